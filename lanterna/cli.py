@@ -1,0 +1,113 @@
+"""The ``lanterna`` command line: import, serve, demo."""
+
+from __future__ import annotations
+
+import argparse
+import sys
+from pathlib import Path
+
+from lanterna.tiler.dataset import DEFAULT_BASE_URL
+from lanterna.tiler.errors import LanternaInputError
+
+EXAMPLES = """examples:
+  lanterna import ushabti.ptm -o datasets/ushabti     tile a PTM as a relightable IIIF dataset
+  lanterna import photo.jpg -o datasets/photo         a plain image layer
+  lanterna serve datasets/                            serve every dataset on http://127.0.0.1:8000/
+  lanterna demo                                       make the demo object and serve it
+"""
+
+
+def main(argv: list[str] | None = None) -> int:
+    """Run the CLI; return the exit status."""
+    parser = _parser()
+    args = parser.parse_args(argv)
+    try:
+        status: int = args.func(args)
+        return status
+    except LanternaInputError as err:
+        print(f"lanterna: error: {err}", file=sys.stderr)
+        return 2
+    except KeyboardInterrupt:
+        return 130
+
+
+def _parser() -> argparse.ArgumentParser:
+    parser = argparse.ArgumentParser(
+        prog="lanterna", description="Annotated, multi-layered relightable images, as IIIF.",
+        epilog=EXAMPLES, formatter_class=argparse.RawDescriptionHelpFormatter)
+    sub = parser.add_subparsers(required=True, metavar="COMMAND")
+
+    imp = sub.add_parser("import", help="import a .ptm or an image as a dataset",
+                         epilog=EXAMPLES, formatter_class=argparse.RawDescriptionHelpFormatter)
+    imp.add_argument("source", type=Path, help="a .ptm file or an image")
+    imp.add_argument("-o", "--output", type=Path, required=True, help="dataset folder to create")
+    imp.add_argument("--name", help="dataset name in URLs (default: the output folder's name)")
+    imp.add_argument("--label", help="human-readable label (default: the source's name)")
+    imp.add_argument("--base-url", default=DEFAULT_BASE_URL,
+                     help=f"URL the data root is published at (default {DEFAULT_BASE_URL})")
+    imp.add_argument("--tile-size", type=int, default=256, help="tile size (default 256)")
+    imp.add_argument("--force", action="store_true", help="replace an existing output")
+    imp.set_defaults(func=_cmd_import)
+
+    srv = sub.add_parser("serve", help="serve a folder of datasets and the viewer")
+    srv.add_argument("root", type=Path, help="folder holding datasets")
+    _serve_args(srv)
+    srv.set_defaults(func=_cmd_serve)
+
+    demo = sub.add_parser("demo", help="make the demo dataset (if missing) and serve it")
+    demo.add_argument("--root", type=Path, default=Path("datasets"),
+                      help="data root (default ./datasets)")
+    demo.add_argument("--no-serve", action="store_true", help="only build the dataset")
+    demo.add_argument("--force", action="store_true", help="rebuild the demo dataset")
+    _serve_args(demo)
+    demo.set_defaults(func=_cmd_demo)
+    return parser
+
+
+def _serve_args(p: argparse.ArgumentParser) -> None:
+    p.add_argument("--host", default="127.0.0.1", help="interface to bind (default 127.0.0.1)")
+    p.add_argument("--port", type=int, default=8000, help="port (default 8000)")
+
+
+def _cmd_import(args: argparse.Namespace) -> int:
+    from lanterna.tiler.importers import import_source
+
+    if args.tile_size < 64 or args.tile_size > 4096:
+        raise LanternaInputError(None, "--tile-size must be between 64 and 4096")
+    out = import_source(args.source, args.output, name=args.name, label=args.label,
+                        base_url=args.base_url, tile_size=args.tile_size, force=args.force)
+    print(f"wrote {out}")
+    return 0
+
+
+def _cmd_serve(args: argparse.Namespace) -> int:
+    from lanterna.server.app import create_app
+
+    root = args.root.resolve()
+    if not root.is_dir():
+        raise LanternaInputError(args.root, "not a folder")
+    app = create_app({"DATA_ROOT": root})
+    url = f"http://{args.host}:{args.port}/"
+    for desc in sorted(root.glob("*/lanterna.json")):
+        manifest = f"{url}datasets/{desc.parent.name}/manifest.json"
+        print(f"  {desc.parent.name}: {url}viewer/?manifest={manifest}")
+    print(f"Lanterna serving {root} at {url}  (Ctrl-C to stop)", flush=True)
+    app.run(host=args.host, port=args.port, threaded=True)
+    return 0
+
+
+def _cmd_demo(args: argparse.Namespace) -> int:
+    from lanterna.tiler.demo import build_demo
+
+    out = args.root / "demo"
+    if args.force or not (out / "lanterna.json").is_file():
+        print(f"building the demo dataset in {out} …", flush=True)
+        build_demo(out, force=True)
+    if args.no_serve:
+        print(f"demo dataset at {out}")
+        return 0
+    return _cmd_serve(argparse.Namespace(root=args.root, host=args.host, port=args.port))
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())

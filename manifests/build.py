@@ -1,0 +1,57 @@
+"""Build a dataset's IIIF Presentation 3 manifest (iiif-prezi3) from its ``lanterna.json``.
+
+One Canvas; one painting annotation whose body is a ``Choice`` of the layers (the first item is
+the default visible layer). Each item is an ``Image`` (a concrete ``full/max`` URL of the layer's
+colour image) with two services: the ``ImageService3`` of that image and the layer's
+``LanternaRelight`` block, so any IIIF viewer shows the colour image and Lanterna relights it.
+"""
+
+from __future__ import annotations
+
+import json
+from typing import Any
+
+from iiif_prezi3 import (
+    Annotation,
+    AnnotationBody,
+    AnnotationPage,
+    Choice,
+    Manifest,
+    ServiceV3,
+    config,
+)
+
+config.configs["helpers.auto_fields.AutoLang"].auto_lang = "en"
+
+_MEDIA_TYPES = {"jpg": "image/jpeg", "png": "image/png"}
+
+
+def build_manifest(desc: dict[str, Any]) -> dict[str, Any]:
+    """Return the manifest of dataset description ``desc`` as a JSON-ready dict."""
+    ds_url = f"{desc['baseUrl']}/{desc['name']}"
+    width, height = desc["width"], desc["height"]
+    manifest = Manifest(id=f"{ds_url}/manifest.json", label=desc["label"])
+    canvas = manifest.make_canvas(id=f"{ds_url}/canvas/1", width=width, height=height,
+                                  label=desc["label"])
+    bodies = []
+    for layer in desc["layers"]:
+        image_id = layer["body"]
+        image = desc["images"][image_id]
+        service_url = f"{ds_url}/iiif/{image_id}"
+        body = AnnotationBody(
+            id=f"{service_url}/full/max/0/default.jpg",
+            type="Image",
+            format=_MEDIA_TYPES["jpg"],
+            width=image["width"],
+            height=image["height"],
+            label=layer["label"],
+        )
+        body.add_service(ServiceV3(id=service_url, type="ImageService3", profile="level0"))
+        body.add_service(ServiceV3(**layer["service"]))
+        bodies.append(body)
+    page = AnnotationPage(id=f"{ds_url}/canvas/1/page/1")
+    page.add_item(Annotation(id=f"{ds_url}/canvas/1/page/1/annotation/1", motivation="painting",
+                             body=Choice(items=bodies), target=canvas.id))
+    canvas.add_item(page)
+    doc: dict[str, Any] = json.loads(manifest.json(indent=2))
+    return doc
