@@ -1,0 +1,60 @@
+# Lanterna — the two commands of a fresh machine are `make demo` and `make test`.
+# Both install whatever is missing first (a Python venv, npm packages, the plugin build).
+
+PYTHON ?= python3
+VENV   := .venv
+PY     := $(VENV)/bin/python
+PORT   ?= 8000
+CHROMIUM := /usr/bin/chromium
+PLUGIN_SOURCES := $(shell find plugin/src plugin/index.html plugin/*.ts plugin/*.json -type f 2>/dev/null)
+
+.PHONY: demo test install build lint typecheck test-unit test-python browser-deps serve clean screenshot
+
+demo: install build ## make the demo dataset, serve it and print the URL
+	$(VENV)/bin/lanterna demo --root datasets --port $(PORT)
+
+test: install build browser-deps lint typecheck test-unit test-python ## run every test
+
+install: $(VENV)/.installed node_modules/.installed
+
+$(VENV)/.installed: pyproject.toml
+	test -x $(PY) || $(PYTHON) -m venv $(VENV)
+	$(PY) -m pip install --quiet --upgrade pip
+	$(PY) -m pip install --quiet -e '.[dev]'
+	touch $@
+
+node_modules/.installed: package.json package-lock.json plugin/package.json
+	npm ci --no-audit --no-fund
+	touch $@
+
+build: plugin/dist/.built
+
+plugin/dist/.built: node_modules/.installed $(PLUGIN_SOURCES)
+	npm run build
+	touch $@
+
+browser-deps:
+	@test -x $(CHROMIUM) || { \
+	  if [ "$$(id -u)" = 0 ] && command -v apt-get >/dev/null; then \
+	    apt-get update -qq && DEBIAN_FRONTEND=noninteractive apt-get install -y -qq chromium; \
+	  else echo "Browser tests need Debian's Chromium: sudo apt-get install -y chromium"; exit 1; fi; }
+
+lint: install
+	$(VENV)/bin/ruff check lanterna tiler manifests server tests bench
+	npm run lint
+
+typecheck: install
+	$(VENV)/bin/mypy
+	npm run typecheck
+
+test-unit: install
+	npm run test:unit
+
+test-python: install build
+	$(VENV)/bin/pytest
+
+screenshot: install build ## retake docs/screenshot.png from the demo dataset
+	$(PY) bench/screenshot.py --root datasets --out docs/screenshot.png
+
+clean:
+	rm -rf plugin/dist datasets tests/browser/out

@@ -1,0 +1,109 @@
+"""Real Chromium renders PTM datasets through the plugin; pixels match a numpy relight.
+
+The viewer fits image rectangles so that one image pixel of the level OpenSeadragon draws is
+exactly one screen pixel (zoom 1 → full resolution, zoom 1/2 → the next level), and the
+read-back frame is compared with a numpy relight of the very tiles that level is made of.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+import numpy.typing as npt
+import pytest
+import pyvips
+
+from lanterna.tiler import iiif_geometry as geo
+from lanterna.tiler.dataset import DatasetWriter
+from lanterna.tiler.importers import add_ptm_layer
+from lanterna.tiler.ptm_model import Ptm, ptm_weights
+
+from .browser import Shot, render
+from .conftest import LiveServer
+
+pytestmark = pytest.mark.browser
+
+W, H = 900, 700
+LIGHTS = [(0.0, 0.0), (-0.7, 0.2), (0.5, -0.6), (0.3, 0.8)]
+TOLERANCE = 2  # out of 255
+
+
+def smooth_random_ptm(colorspace: str, seed: int) -> Ptm:
+    """A PTM whose relit values mostly stay inside 0–255: random, but not saturated."""
+    rng = np.random.default_rng(seed)
+    shape = (H, W, 6) if colorspace == "lrgb" else (H, W, 3, 6)
+    coef = rng.integers(96, 160, shape, dtype=np.uint8)  # a0..a4 in ±64 units at scale 2
+    coef[..., 5] = rng.integers(60, 200, shape[:-1], dtype=np.uint8)  # a5, scale 1, bias 0
+    scale = np.array([2, 2, 2, 2, 2, 1], np.float32)
+    bias = np.array([128, 128, 128, 128, 128, 0], np.int32)
+    rgb = rng.integers(0, 256, (H, W, 3), dtype=np.uint8) if colorspace == "lrgb" else None
+    return Ptm(colorspace, coef, scale, bias, rgb)
+
+
+def level_plane(image_dir: Path, factor: int, tile: int = 256) -> npt.NDArray[np.uint8]:
+    """Assemble one level of a stored pyramid from its tile files (what the browser gets)."""
+    lw, lh = geo.level_size(W, H, factor)
+    out = np.zeros((lh, lw, 3), np.uint8)
+    for t in geo.spec_tiles(W, H, tile, factor):
+        path = image_dir / geo.canonical_path(W, H, t) / "0" / "default.png"
+        px = pyvips.Image.new_from_file(str(path)).numpy()
+        out[t.y // factor: t.y // factor + t.sh, t.x // factor: t.x // factor + t.sw] = px
+    return out
+
+
+def numpy_relight(ds_dir: Path, layer: dict[str, Any], factor: int,
+                  light: tuple[float, float]) -> npt.NDArray[np.float32]:
+    """Relight a level with the documented maths (docs/dataset-format.md), in float32."""
+    channels: dict[str, npt.NDArray[np.float32]] = {}
+    for plane in layer["planes"]:
+        image_id = plane["service"]["id"].rsplit("/", 1)[1]
+        px = level_plane(ds_dir / "iiif" / image_id, factor).astype(np.float32) / 255.0
+        for k, name in enumerate(plane["channels"]):
+            channels[name] = (px[..., k] - np.float32(plane["bias"][k])) * np.float32(
+                plane["scale"][k])
+    w = ptm_weights(*light).astype(np.float32)
+    if layer["colorspace"] == "lrgb":
+        lum = sum(channels[f"L{k}"] * w[k] for k in range(6))
+        out = np.stack([channels[c] * lum for c in "RGB"], axis=-1)
+    else:
+        out = np.stack([sum(channels[f"{c}{k}"] * w[k] for k in range(6)) for c in "RGB"], -1)
+    return np.clip(out, 0.0, 1.0).astype(np.float32)
+
+
+@pytest.mark.parametrize("colorspace", ["lrgb", "rgb"])
+def test_relit_pixels_match_numpy(tmp_path: Path, live_server: Callable[[Path], LiveServer],
+                                  colorspace: str) -> None:
+    root = tmp_path / "root"
+    with DatasetWriter(root / "obj", name="obj", label="Random PTM", width=W, height=H) as ds:
+        layer = add_ptm_layer(ds, smooth_random_ptm(colorspace, seed=7))
+    server = live_server(root)
+    url = f"{server.url}/viewer/?manifest={server.url}/datasets/obj/manifest.json"
+    vw, vh = 640, 480
+    # zoom 1 over 6 tiles (seams at x=256, 512 and y=256); zoom 1/2 over 4 level-1 tiles
+    views = [(1, (130, 100, vw, vh)), (2, (100, 60, 2 * vw, 2 * vh))]
+    shots = [Shot(light, region, tmp_path / f"z{f}_{i}.rgba")
+             for f, region in views for i, light in enumerate(LIGHTS)]
+    frames = render(url, shots, viewport=(vw, vh))
+    checked = 0
+    for shot, frame in zip(shots, frames, strict=True):
+        factor = 1 if shot.region[2] == vw else 2
+        ref = numpy_relight(root / "obj", layer, factor, shot.light)
+        x0, y0 = shot.region[0] // factor, shot.region[1] // factor
+        ref = ref[y0: y0 + vh, x0: x0 + vw]
+        got = frame[: ref.shape[0], : ref.shape[1]]
+        expected = np.round(ref * 255.0).astype(np.int16)
+        diff = np.abs(got[..., :3].astype(np.int16) - expected)
+        assert got.shape[:2] == expected.shape[:2]
+        assert (got[..., 3] == 255).all(), "the image area must be opaque"
+        bad = np.argwhere(diff.max(axis=-1) > TOLERANCE)
+        assert bad.size == 0, (
+            f"{colorspace} light={shot.light} zoom 1/{factor}: {len(bad)} pixels off by up to "
+            f"{diff.max()} /255, first at (row, col) {tuple(bad[0])}: got "
+            f"{got[tuple(bad[0])][:3]}, expected {expected[tuple(bad[0])]}")
+        # the light changes the picture: not a constant image
+        assert expected.std() > 10
+        checked += diff.shape[0] * diff.shape[1]
+    assert checked >= 4 * vw * vh
