@@ -86,9 +86,7 @@ class _Lines:
         try:
             return raw.decode("ascii").strip()
         except UnicodeDecodeError:
-            raise LanternaInputError(
-                self.source, f"header {what} line is not ASCII text"
-            ) from None
+            raise LanternaInputError(self.source, f"header {what} line is not ASCII text") from None
 
     def ints(self, what: str, count: int) -> tuple[int, ...]:
         values = self.numbers(what, count)
@@ -376,10 +374,7 @@ def _normals_from_coeffs(a: npt.NDArray[np.float64]) -> npt.NDArray[np.float64]:
     safe = np.where(has_max, det, 1.0)
     lu = np.where(has_max, (a2 * a4 - 2.0 * a1 * a3) / safe, 0.0)
     lv = np.where(has_max, (a2 * a3 - 2.0 * a0 * a4) / safe, 0.0)
-    r = np.hypot(lu, lv)
-    outside = r > 1.0
-    lu = np.where(outside, lu / np.maximum(r, 1e-12), lu)
-    lv = np.where(outside, lv / np.maximum(r, 1e-12), lv)
+    # A maximum outside the unit disk gets lz = 0; normalising then puts it on the rim.
     lz = np.sqrt(np.clip(1.0 - lu * lu - lv * lv, 0.0, None))
     n = np.stack([lu, lv, lz], axis=-1)
     result: npt.NDArray[np.float64] = n / np.linalg.norm(n, axis=-1, keepdims=True)

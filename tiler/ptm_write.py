@@ -189,9 +189,7 @@ def decode_jpeg_plane(data: bytes) -> npt.NDArray[np.uint8]:
     return np.frombuffer(pixels, dtype=np.uint8).reshape(image.height, image.width).copy()
 
 
-def _jpeg_body(
-    ptm: Ptm, quality: int, prediction: PtmPrediction | None, dest: Path
-) -> list[bytes]:
+def _jpeg_body(ptm: Ptm, quality: int, prediction: PtmPrediction | None, dest: Path) -> list[bytes]:
     # JPEG raster order is bottom-up, like the rest of the file.
     planes = ptm_planes(ptm)[:, ::-1]
     n = planes.shape[0]
