@@ -1,0 +1,568 @@
+"""Tests for the PTM reader and writer (tiler/ptm.py, tiler/ptm_write.py)."""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from lanterna.tiler.errors import LanternaInputError
+from lanterna.tiler.ptm import ptm_normals, read_ptm
+from lanterna.tiler.ptm_model import Ptm
+from lanterna.tiler.ptm_write import PtmFormat, PtmPrediction, write_ptm
+
+from .ptm_fixtures import (
+    header_bytes,
+    jpeg_bytes,
+    planes_of,
+    random_ptm,
+    reference_decode_jpeg_ptm,
+    smooth_ptm,
+)
+
+SHARED = Path(__file__).resolve().parents[3] / "shared"
+USHABTI = SHARED / "realdata" / "chi-ushabti-vase" / "ushabti.ptm"
+
+W, H = 13, 7  # odd, non-square: a transposition or a missed flip cannot pass unnoticed
+
+
+def assert_same_ptm(a: Ptm, b: Ptm) -> None:
+    assert a.colorspace == b.colorspace
+    np.testing.assert_array_equal(a.coefficients, b.coefficients)
+    np.testing.assert_array_equal(a.scale, b.scale)
+    np.testing.assert_array_equal(a.bias, b.bias)
+    if a.rgb is None:
+        assert b.rgb is None
+    else:
+        assert b.rgb is not None
+        np.testing.assert_array_equal(a.rgb, b.rgb)
+
+
+# --- uncompressed formats -------------------------------------------------------------------
+
+
+@pytest.mark.parametrize(
+    ("fmt", "version", "colorspace"),
+    [
+        ("PTM_FORMAT_RGB", "PTM_1.2", "rgb"),
+        ("PTM_FORMAT_LRGB", "PTM_1.2", "lrgb"),
+        ("PTM_FORMAT_LRGB", "PTM_1.1", "lrgb"),
+    ],
+)
+def test_uncompressed_round_trip_is_byte_exact(
+    tmp_path: Path, fmt: PtmFormat, version: str, colorspace: str
+) -> None:
+    ptm = random_ptm(colorspace, W, H)
+    path = tmp_path / "a.ptm"
+    write_ptm(path, ptm, fmt, version=version)
+    back = read_ptm(path)
+    assert (back.width, back.height) == (W, H)
+    assert_same_ptm(ptm, back)
+    per_texel = 18 if colorspace == "rgb" else 9
+    data = path.read_bytes()
+    header_end = [i for i, b in enumerate(data) if b == ord("\n")][5] + 1  # six header lines
+    assert data[:header_end].split(b"\n")[:2] == [version.encode(), fmt.encode()]
+    assert len(data) - header_end == W * H * per_texel
+    assert list(tmp_path.iterdir()) == [path]  # no temporary file left behind
+
+
+def _rows_bottom_up(a: np.ndarray) -> bytes:
+    return np.ascontiguousarray(a[::-1]).tobytes()
+
+
+def test_reader_on_hand_built_rgb_file(tmp_path: Path) -> None:
+    ptm = random_ptm("rgb", W, H, seed=1)
+    blocks = b"".join(_rows_bottom_up(ptm.coefficients[:, :, c, :]) for c in range(3))
+    path = tmp_path / "rgb.ptm"
+    path.write_bytes(header_bytes("PTM_FORMAT_RGB", W, H) + blocks)
+    back = read_ptm(path)
+    assert_same_ptm(ptm, back)
+    # The top row of the image is the LAST row of the red block in the file.
+    red_block = blocks[: W * H * 6]
+    assert back.coefficients[0, :, 0, :].tobytes() == red_block[-W * 6 :]
+    assert back.coefficients[H - 1, :, 0, :].tobytes() == red_block[: W * 6]
+
+
+def test_reader_on_hand_built_lrgb_12_file(tmp_path: Path) -> None:
+    ptm = random_ptm("lrgb", W, H, seed=2)
+    assert ptm.rgb is not None
+    payload = _rows_bottom_up(ptm.coefficients) + _rows_bottom_up(ptm.rgb)
+    path = tmp_path / "lrgb12.ptm"
+    path.write_bytes(header_bytes("PTM_FORMAT_LRGB", W, H) + payload)
+    back = read_ptm(path)
+    assert_same_ptm(ptm, back)
+    assert back.coefficients[0].tobytes() == payload[W * H * 6 - W * 6 : W * H * 6]
+    assert back.rgb is not None and back.rgb[0].tobytes() == payload[-W * 3 :]
+
+
+def test_reader_on_hand_built_lrgb_11_file(tmp_path: Path) -> None:
+    ptm = random_ptm("lrgb", W, H, seed=3)
+    assert ptm.rgb is not None
+    texels = np.concatenate([ptm.coefficients, ptm.rgb], axis=2)  # a0..a5, R, G, B
+    payload = _rows_bottom_up(texels)
+    path = tmp_path / "lrgb11.ptm"
+    path.write_bytes(header_bytes("PTM_FORMAT_LRGB", W, H, version="PTM_1.1") + payload)
+    back = read_ptm(path)
+    assert_same_ptm(ptm, back)
+    assert back.rgb is not None
+    assert back.rgb[0, 0].tobytes() == payload[-W * 9 + 6 : -W * 9 + 9]
+
+
+def test_header_tolerates_trailing_spaces_and_crlf(tmp_path: Path) -> None:
+    ptm = random_ptm("lrgb", W, H, seed=4)
+    assert ptm.rgb is not None
+    head = header_bytes("PTM_FORMAT_LRGB", W, H).replace(b"\n", b"  \r\n")
+    path = tmp_path / "crlf.ptm"
+    path.write_bytes(head + _rows_bottom_up(ptm.coefficients) + _rows_bottom_up(ptm.rgb))
+    assert_same_ptm(ptm, read_ptm(path))
+
+
+def test_writer_preserves_unusual_scales(tmp_path: Path) -> None:
+    ptm = random_ptm("lrgb", W, H)
+    odd = Ptm(
+        "lrgb",
+        ptm.coefficients,
+        np.array([1e-7, 0.1, 1 / 3, 7, 123.456, 2], np.float32),
+        ptm.bias,
+        ptm.rgb,
+    )
+    write_ptm(tmp_path / "s.ptm", odd, "PTM_FORMAT_LRGB")
+    np.testing.assert_array_equal(read_ptm(tmp_path / "s.ptm").scale, odd.scale)
+
+
+# --- JPEG formats ---------------------------------------------------------------------------
+
+
+@pytest.mark.parametrize(
+    ("fmt", "colorspace"), [("PTM_FORMAT_JPEG_LRGB", "lrgb"), ("PTM_FORMAT_JPEG_RGB", "rgb")]
+)
+def test_jpeg_without_prediction_at_q100_is_close(
+    tmp_path: Path, fmt: PtmFormat, colorspace: str
+) -> None:
+    ptm = smooth_ptm(colorspace, 41, 23)
+    path = tmp_path / "j.ptm"
+    write_ptm(path, ptm, fmt, jpeg_quality=100)
+    back = read_ptm(path)
+    assert (back.colorspace, back.width, back.height) == (colorspace, 41, 23)
+    diff = np.abs(planes_of(back).astype(int) - planes_of(ptm))
+    assert diff.max() <= 3
+    np.testing.assert_array_equal(planes_of(back), reference_decode_jpeg_ptm(path))
+    np.testing.assert_array_equal(back.scale, ptm.scale)
+    np.testing.assert_array_equal(back.bias, ptm.bias)
+
+
+def _with_overflow(ptm: Ptm) -> Ptm:
+    """Put extreme values at pixel (row 2, col 5) so predicted residuals must be clipped."""
+    coeffs = ptm.coefficients.copy()
+    rgb = None if ptm.rgb is None else ptm.rgb.copy()
+    if ptm.colorspace == "lrgb":
+        assert rgb is not None
+        coeffs[2, 5, 0], coeffs[2, 5, 5] = 3, 3  # plane 0 predicted from inverted plane 5
+        rgb[2, 5, 0], rgb[2, 5, 1] = 250, 4  # plane 6 predicted from plane 7
+    else:
+        coeffs[2, 5, 0, 1], coeffs[2, 5, 0, 0] = 250, 2  # plane 1 predicted from plane 0
+        coeffs[2, 5, 1, 0], coeffs[2, 5, 0, 0] = 2, 2  # plane 6 predicted from inverted plane 0
+    return Ptm(ptm.colorspace, coeffs, ptm.scale, ptm.bias, rgb)
+
+
+LRGB_PREDICTION = PtmPrediction(
+    order=[8, 4, 3, 2, 1, 7, 5, 0, 6],
+    reference=[5, -1, -1, -1, -1, 1, 7, -1, 7],
+    transform=[1, 0, 0, 0, 0, 1, 0, 0, 0],
+)
+RGB_PREDICTION = PtmPrediction(
+    order=[0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 17, 16, 15, 14, 13, 12],
+    reference=[-1, 0, 0, 1, -1, 4, 0, 6, 6, -1, -1, -1, 17, -1, -1, -1, -1, 0],
+    transform=[0, 0, 1, 0, 0, 1, 1, 0, 0, 0, 0, 0, 1, 0, 0, 0, 0, 0],
+)
+
+
+@pytest.mark.parametrize(
+    ("fmt", "colorspace", "prediction", "patched_planes"),
+    [
+        ("PTM_FORMAT_JPEG_LRGB", "lrgb", LRGB_PREDICTION, (0, 6)),
+        ("PTM_FORMAT_JPEG_RGB", "rgb", RGB_PREDICTION, (1, 6)),
+    ],
+)
+def test_jpeg_with_prediction_matches_independent_decode(
+    tmp_path: Path,
+    fmt: PtmFormat,
+    colorspace: str,
+    prediction: PtmPrediction,
+    patched_planes: tuple[int, ...],
+) -> None:
+    ptm = _with_overflow(smooth_ptm(colorspace, 40, 24, seed=5))
+    path = tmp_path / "p.ptm"
+    write_ptm(path, ptm, fmt, jpeg_quality=90, prediction=prediction)
+    lines = path.read_bytes().split(b"\n", 14)
+    assert [int(t) for t in lines[7].split()] == list(prediction.transform)
+    assert [int(t) for t in lines[10].split()] == list(prediction.order)
+    assert [int(t) for t in lines[11].split()] == list(prediction.reference)
+    side_sizes = [int(t) for t in lines[13].split()]
+    for plane in patched_planes:
+        assert side_sizes[plane] >= 5, f"plane {plane} should carry side info"
+
+    back = read_ptm(path)
+    got = planes_of(back)
+    want = planes_of(ptm)
+    np.testing.assert_array_equal(got, reference_decode_jpeg_ptm(path))
+    # Side info makes the clipped pixel exact ...
+    for plane in patched_planes:
+        assert got[plane, 2, 5] == want[plane, 2, 5]
+    # ... and the rest stays close (the encoder predicts from the decoded reference).
+    assert np.abs(got.astype(int) - want).mean() < 2.0
+
+
+def test_hand_built_jpeg_lrgb_prediction_transform_and_side_info(tmp_path: Path) -> None:
+    """Constant planes decode exactly, so every expected value is known in closed form."""
+    w, h = 16, 9
+    residual = [200, 150, 20, 128, 128, 128, 60, 70, 80]
+    # plane 1 <- inv(plane 0); plane 2 <- plane 1 (wraps below 0); plane 3 <- plane 2.
+    reference = [-1, 0, 1, 2, -1, -1, -1, -1, -1]
+    transform = [0, 1, 0, 0, 0, 0, 0, 0, 1]  # transform on a plane without reference: ignored
+    order = [3, 4, 5, 6, 7, 8, 2, 1, 0]  # planes 8, 7, 6 first, then 0..5
+    side = [b""] * 9
+    side[2] = (0).to_bytes(4, "big") + bytes([9])  # raster index 0 = bottom-left pixel
+    side[2] += (w * h - 1).to_bytes(4, "big") + bytes([250])  # last = top-right pixel
+    streams = [jpeg_bytes(np.full((h, w), v, np.uint8)) for v in residual]
+    head = header_bytes(
+        "PTM_FORMAT_JPEG_LRGB", w, h, scale="2 2 2 2 2 2", bias="160 160 160 127 127 0"
+    )
+    jpeg_lines = [
+        "95",
+        " ".join(map(str, transform)),
+        " ".join(["0"] * 9),
+        " ".join(["0"] * 9),
+        " ".join(map(str, order)),
+        " ".join(map(str, reference)),
+        " ".join(str(len(s)) for s in streams),
+        " ".join(str(len(s)) for s in side),
+    ]
+    body = b"".join(s + q for s, q in zip(streams, side, strict=True))
+    path = tmp_path / "hand.ptm"
+    path.write_bytes(head + ("\n".join(jpeg_lines) + "\n").encode() + body)
+
+    ptm = read_ptm(path)
+    c = ptm.coefficients
+    assert ptm.rgb is not None
+    np.testing.assert_array_equal(ptm.scale, [2.0] * 6)
+    np.testing.assert_array_equal(ptm.bias, [160, 160, 160, 127, 127, 0])
+    assert np.all(c[..., 0] == 200)
+    assert np.all(c[..., 1] == (255 - 200) + 150 - 128)  # 77
+    p2 = (77 + 20 - 128) % 256  # 225
+    assert c[h - 1, 0, 2] == 9  # side info at raster 0 lands bottom-left (rows top-down)
+    assert c[0, w - 1, 2] == 250  # raster index w*h-1 lands top-right
+    interior = np.ones((h, w), bool)
+    interior[h - 1, 0] = interior[0, w - 1] = False
+    assert np.all(c[..., 2][interior] == p2)
+    # plane 3 is predicted from the patched plane 2
+    assert c[h - 1, 0, 3] == 9 and c[0, w - 1, 3] == 250 and c[1, 1, 3] == p2
+    assert np.all(ptm.rgb[..., 0] == 60) and np.all(ptm.rgb[..., 2] == 80)
+
+
+# --- the real file --------------------------------------------------------------------------
+
+
+@pytest.fixture(scope="module")
+def ushabti() -> Ptm:
+    if not USHABTI.exists():
+        pytest.skip(f"../shared/realdata not present: {USHABTI} is missing")
+    return read_ptm(USHABTI)
+
+
+def _object_mask(ptm: Ptm) -> np.ndarray:
+    """The figure against its black background, lit from the viewer."""
+    mask: np.ndarray = ptm.relight(0.0, 0.0).mean(axis=2) > 0.15
+    return mask
+
+
+@pytest.mark.realdata
+def test_ushabti_header_and_upright(ushabti: Ptm) -> None:
+    assert (ushabti.colorspace, ushabti.width, ushabti.height) == ("lrgb", 512, 1024)
+    np.testing.assert_array_equal(ushabti.bias, [160, 160, 160, 127, 127, 0])
+    mask = _object_mask(ushabti)
+    rows = np.flatnonzero(mask.any(axis=1))
+    top, bottom = rows[0], rows[-1]
+    third = (bottom - top) // 3
+    width_per_row = mask.sum(axis=1)
+    upper = width_per_row[top : top + third].mean()
+    lower = width_per_row[bottom - third : bottom].mean()
+    # Checked by eye: head and broad shoulders at the top, narrow legs and a base below.
+    # Upright the upper third is ~200 px wide and the lower ~140 px; flipped it fails.
+    assert upper > 1.25 * lower
+    widest_row = int(np.argmax(width_per_row))
+    assert widest_row < ushabti.height // 2
+
+
+@pytest.mark.realdata
+@pytest.mark.parametrize(("lu", "lit_side"), [(-0.8, "left"), (0.8, "right")])
+def test_ushabti_relights_from_the_correct_side(ushabti: Ptm, lu: float, lit_side: str) -> None:
+    mask = _object_mask(ushabti)
+    centre = int(round(np.flatnonzero(mask.any(axis=0)).mean()))
+    image = ushabti.relight(lu, 0.0).mean(axis=2)
+    left = image[:, :centre][mask[:, :centre]].mean()
+    right = image[:, centre:][mask[:, centre:]].mean()
+    bright, dark = (left, right) if lit_side == "left" else (right, left)
+    assert bright > 1.5 * dark
+
+
+# --- normals --------------------------------------------------------------------------------
+
+
+def _normal_ptm(coeff_rows: list[list[int]], scale: float = 0.1) -> Ptm:
+    coeffs = np.array(coeff_rows, dtype=np.uint8)[None]  # (1, N, 6)
+    rgb = np.full(coeffs.shape[:2] + (3,), 200, np.uint8)
+    return Ptm("lrgb", coeffs, np.full(6, scale, np.float32), np.full(6, 128, np.int32), rgb)
+
+
+def test_ptm_normals_match_the_maximum_of_the_quadratic() -> None:
+    b = 128  # bias; a = (byte - 128) * 0.1
+    ptm = _normal_ptm(
+        [
+            # -(lu-0.3)² - (lv+0.2)²: a0=a1=-1, a3=0.6, a4=-0.4 -> max at (0.3, -0.2)
+            [b - 10, b - 10, b, b + 6, b - 4, b + 50],
+            # with a cross term: a0=-2, a1=-1, a2=0.5, a3=0.4, a4=0.3
+            [b - 20, b - 10, b + 5, b + 4, b + 3, b],
+            # all zero -> (0, 0, 1)
+            [b, b, b, b, b, b + 100],
+            # convex (a0 > 0): no interior maximum -> (0, 0, 1)
+            [b + 10, b + 10, b, b + 6, b, b],
+            # max at (2, 0), outside the disk -> projected to the rim (1, 0, 0)
+            [b - 10, b - 10, b, b + 40, b, b],
+        ]
+    )
+    n = ptm_normals(ptm)
+    assert n.shape == (1, 5, 3) and n.dtype == np.float32
+    np.testing.assert_allclose(np.linalg.norm(n, axis=-1), 1.0, atol=1e-6)
+
+    def expected(lu: float, lv: float) -> list[float]:
+        return [lu, lv, float(np.sqrt(1 - lu * lu - lv * lv))]
+
+    np.testing.assert_allclose(n[0, 0], expected(0.3, -0.2), atol=1e-5)
+    a0, a1, a2, a3, a4 = -2.0, -1.0, 0.5, 0.4, 0.3
+    # grad = 0: [2a0 a2; a2 2a1] [lu lv]ᵀ = -[a3 a4]ᵀ
+    lu, lv = np.linalg.solve([[2 * a0, a2], [a2, 2 * a1]], [-a3, -a4])
+    np.testing.assert_allclose(n[0, 1], expected(lu, lv), atol=1e-5)
+    np.testing.assert_allclose(n[0, 2], [0, 0, 1], atol=1e-6)
+    np.testing.assert_allclose(n[0, 3], [0, 0, 1], atol=1e-6)
+    np.testing.assert_allclose(n[0, 4], [1, 0, 0], atol=1e-6)
+
+
+def test_ptm_normals_of_rgb_average_the_channels() -> None:
+    lrgb = _normal_ptm([[118, 118, 128, 134, 124, 178]])
+    red = lrgb.coefficients[0, 0]
+    flat = np.array([128, 128, 128, 128, 128, 228], np.uint8)  # no interior max -> (0, 0, 1)
+    coeffs = np.stack([red, red, flat])[None, None]  # (1, 1, 3, 6)
+    rgb = Ptm("rgb", coeffs, lrgb.scale, lrgb.bias)
+    n_red = ptm_normals(lrgb)[0, 0]
+    mean = (2 * n_red + np.array([0, 0, 1])) / 3
+    np.testing.assert_allclose(ptm_normals(rgb)[0, 0], mean / np.linalg.norm(mean), atol=1e-6)
+
+
+# --- bad input ------------------------------------------------------------------------------
+
+
+def _raw_lrgb(tmp_path: Path) -> bytes:
+    ptm = random_ptm("lrgb", W, H, seed=9)
+    write_ptm(tmp_path / "base.ptm", ptm, "PTM_FORMAT_LRGB")
+    return (tmp_path / "base.ptm").read_bytes()
+
+
+def _jpeg_lrgb(tmp_path: Path) -> bytes:
+    ptm = _with_overflow(smooth_ptm("lrgb", 40, 24))
+    write_ptm(tmp_path / "base.ptm", ptm, "PTM_FORMAT_JPEG_LRGB", prediction=LRGB_PREDICTION)
+    return (tmp_path / "base.ptm").read_bytes()
+
+
+def _replace_line(data: bytes, index: int, text: str) -> bytes:
+    head = data.split(b"\n", 14)
+    head[index] = text.encode()
+    return b"\n".join(head)
+
+
+def _jpeg_offsets(data: bytes) -> tuple[int, list[int], list[int]]:
+    lines = data.split(b"\n", 14)
+    start = len(data) - len(lines[14])
+    return start, [int(t) for t in lines[12].split()], [int(t) for t in lines[13].split()]
+
+
+def _cut_inside_stream(data: bytes, plane: int) -> bytes:
+    start, sizes, sides = _jpeg_offsets(data)
+    begin = start + sum(sizes[:plane]) + sum(sides[:plane])
+    return data[: begin + sizes[plane] // 2]
+
+
+def _garble_stream(data: bytes, plane: int) -> bytes:
+    """Keep all sizes but replace the middle of one JPEG stream with junk."""
+    start, sizes, sides = _jpeg_offsets(data)
+    begin = start + sum(sizes[:plane]) + sum(sides[:plane]) + 2  # keep the SOI marker
+    junk = bytes(np.random.default_rng(0).integers(0, 256, sizes[plane] - 4, dtype=np.uint8))
+    return data[:begin] + junk + data[begin + len(junk) :]
+
+
+def _truncate_stream_consistently(data: bytes, plane: int) -> bytes:
+    """Drop the last 30 bytes (scan data) of one JPEG stream and fix the sizes line."""
+    start, sizes, sides = _jpeg_offsets(data)
+    begin = start + sum(sizes[:plane]) + sum(sides[:plane])
+    kept = sizes[plane] - 30
+    data = data[: begin + kept] + data[begin + sizes[plane] :]
+    sizes[plane] = kept
+    return _replace_line(data, 12, " ".join(map(str, sizes)))
+
+
+def _bad_side_index(data: bytes) -> bytes:
+    start, sizes, sides = _jpeg_offsets(data)
+    assert sides[0] >= 5
+    at = start + sizes[0]  # plane 0's side info follows its stream
+    return data[:at] + (40 * 24).to_bytes(4, "big") + data[at + 4 :]
+
+
+BadCase = tuple[str, Callable[[Path], bytes], str]
+BAD_CASES: list[BadCase] = [
+    ("empty", lambda t: b"", "not a PTM file"),
+    ("garbled", lambda t: bytes(range(256)) * 4, "not a PTM file"),
+    ("cut in version line", lambda t: _raw_lrgb(t)[:5], "header ends before the version line"),
+    ("cut in scale line", lambda t: _raw_lrgb(t)[:30], "header ends before the scale line"),
+    ("cut in raw payload", lambda t: _raw_lrgb(t)[:-1], "payload is too short"),
+    ("cut at end of header", lambda t: _raw_lrgb(t)[: -W * H * 9], "payload is too short"),
+    ("extra bytes after raw payload", lambda t: _raw_lrgb(t) + b"\0", "payload is too long"),
+    ("cut in JPEG header lines", lambda t: _jpeg_lrgb(t)[:150], "header ends before"),
+    (
+        "cut in JPEG stream 3",
+        lambda t: _cut_inside_stream(_jpeg_lrgb(t), 3),
+        "payload is too short",
+    ),
+    ("extra bytes after JPEG", lambda t: _jpeg_lrgb(t) + b"xx", "payload is too long"),
+    ("corrupt JPEG stream", lambda t: _garble_stream(_jpeg_lrgb(t), 4), "JPEG stream 4 is corrupt"),
+    (
+        "truncated JPEG stream, sizes consistent",
+        lambda t: _truncate_stream_consistently(_jpeg_lrgb(t), 2),
+        "JPEG stream 2 is corrupt or truncated",
+    ),
+    (
+        "side-info index out of range",
+        lambda t: _bad_side_index(_jpeg_lrgb(t)),
+        "side-info index 960",
+    ),
+    (
+        "unknown format",
+        lambda t: _replace_line(_raw_lrgb(t), 1, "PTM_FORMAT_FOO"),
+        "unknown PTM format",
+    ),
+    (
+        "LUM format",
+        lambda t: _replace_line(_raw_lrgb(t), 1, "PTM_FORMAT_LUM"),
+        "unsupported PTM format",
+    ),
+    (
+        "JPEGLS format",
+        lambda t: _replace_line(_raw_lrgb(t), 1, "PTM_FORMAT_JPEGLS_LRGB"),
+        "unsupported PTM format",
+    ),
+    (
+        "unknown version",
+        lambda t: _replace_line(_raw_lrgb(t), 0, "PTM_1.3"),
+        "unsupported PTM version",
+    ),
+    ("version line wrong", lambda t: _replace_line(_raw_lrgb(t), 0, "PTX_1.2"), "not a PTM file"),
+    (
+        "width mismatch",
+        lambda t: _replace_line(_raw_lrgb(t), 2, str(W + 1)),
+        "payload is too short",
+    ),
+    (
+        "height mismatch",
+        lambda t: _replace_line(_raw_lrgb(t), 3, str(H - 1)),
+        "payload is too long",
+    ),
+    ("zero width", lambda t: _replace_line(_raw_lrgb(t), 2, "0"), "width must be positive"),
+    ("negative height", lambda t: _replace_line(_raw_lrgb(t), 3, "-7"), "height must be positive"),
+    ("absurd width", lambda t: _replace_line(_raw_lrgb(t), 2, "9999999"), "too large"),
+    (
+        "non-numeric width",
+        lambda t: _replace_line(_raw_lrgb(t), 2, "thirteen"),
+        "width line is not numeric",
+    ),
+    (
+        "non-numeric scale",
+        lambda t: _replace_line(_raw_lrgb(t), 4, "2 2 x 2 2 2"),
+        "scale line is not numeric",
+    ),
+    (
+        "five scales",
+        lambda t: _replace_line(_raw_lrgb(t), 4, "2 2 2 2 2"),
+        "scale line has 5 values",
+    ),
+    ("nan scale", lambda t: _replace_line(_raw_lrgb(t), 4, "2 2 nan 2 2 2"), "non-finite"),
+    (
+        "fractional bias",
+        lambda t: _replace_line(_raw_lrgb(t), 5, "1 2 3 4 5 6.5"),
+        "bias line must hold integers",
+    ),
+    (
+        "JPEG width swapped",
+        lambda t: _replace_line(_replace_line(_jpeg_lrgb(t), 2, "24"), 3, "40"),
+        "expected single-band 24x40",
+    ),
+    (
+        "motion vector",
+        lambda t: _replace_line(_jpeg_lrgb(t), 8, "0 0 1 0 0 0 0 0 0"),
+        "motion vectors",
+    ),
+    (
+        "order not a permutation",
+        lambda t: _replace_line(_jpeg_lrgb(t), 10, "0 0 1 2 3 4 5 6 7"),
+        "not a permutation",
+    ),
+    (
+        "reference decoded later",
+        lambda t: _replace_line(_jpeg_lrgb(t), 11, "-1 0 -1 -1 -1 -1 -1 -1 -1").replace(
+            b"\n8 4 3 2 1 7 5 0 6\n", b"\n1 0 2 3 4 5 6 7 8\n"
+        ),
+        "decoded before its reference",
+    ),
+    (
+        "bad transform",
+        lambda t: _replace_line(_jpeg_lrgb(t), 7, "2 0 0 0 0 1 0 0 0"),
+        "unsupported plane transform",
+    ),
+    (
+        "side-info size not a multiple of 5",
+        lambda t: _replace_line(_jpeg_lrgb(t), 13, "3 0 0 0 0 0 0 0 0"),
+        "multiples of 5",
+    ),
+]
+
+
+@pytest.mark.parametrize(("name", "make", "problem"), BAD_CASES, ids=[c[0] for c in BAD_CASES])
+def test_bad_input_names_file_and_problem(
+    tmp_path: Path, name: str, make: Callable[[Path], bytes], problem: str
+) -> None:
+    path = tmp_path / "bad.ptm"
+    path.write_bytes(make(tmp_path))
+    with pytest.raises(LanternaInputError) as info:
+        read_ptm(path)
+    message = str(info.value)
+    assert message.startswith(f"{path}: "), message
+    assert problem in message, message
+    assert "\n" not in message and "Traceback" not in message
+    assert info.value.__cause__ is None or isinstance(info.value.__cause__, LanternaInputError)
+
+
+def test_missing_file_and_directory(tmp_path: Path) -> None:
+    with pytest.raises(LanternaInputError, match=r"nope\.ptm: file not found$"):
+        read_ptm(tmp_path / "nope.ptm")
+    with pytest.raises(LanternaInputError, match="is a directory"):
+        read_ptm(tmp_path)
+
+
+def test_writer_rejects_inconsistent_arguments(tmp_path: Path) -> None:
+    lrgb = random_ptm("lrgb", W, H)
+    with pytest.raises(LanternaInputError, match="needs an rgb PTM"):
+        write_ptm(tmp_path / "x.ptm", lrgb, "PTM_FORMAT_JPEG_RGB")
+    with pytest.raises(LanternaInputError, match="reference 1 is not decoded earlier"):
+        bad = PtmPrediction(order=list(range(9)), reference=[1] + [-1] * 8, transform=[0] * 9)
+        write_ptm(tmp_path / "x.ptm", lrgb, "PTM_FORMAT_JPEG_LRGB", prediction=bad)
+    assert not (tmp_path / "x.ptm").exists()
