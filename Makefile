@@ -40,7 +40,7 @@ browser-deps:
 	  else echo "Browser tests need Debian's Chromium: sudo apt-get install -y chromium"; exit 1; fi; }
 
 lint: install
-	$(VENV)/bin/ruff check lanterna tiler manifests server tests bench
+	$(VENV)/bin/ruff check lanterna tiler manifests server tests tools
 	npm run lint
 
 typecheck: install
@@ -54,7 +54,7 @@ test-python: install build
 	$(VENV)/bin/pytest
 
 screenshot: install build ## retake docs/screenshot.png from the demo dataset
-	$(PY) bench/screenshot.py --root datasets --out docs/screenshot.png
+	$(PY) tools/screenshot.py --root datasets --out docs/screenshot.png
 
 clean:
 	rm -rf plugin/dist datasets tests/browser/out

@@ -14,6 +14,7 @@ from pathlib import Path
 from typing import Any
 
 from flask import Flask, Response, abort, redirect, request, send_from_directory
+from werkzeug.wrappers import Response as BaseResponse
 from werkzeug.security import safe_join
 
 IMAGE_CONTEXT = "http://iiif.io/api/image/3/context.json"
@@ -54,7 +55,7 @@ def create_app(config: dict[str, Any] | None = None) -> Flask:
         return send_from_directory(app.config["VIEWER_DIR"], path)
 
     @app.get("/datasets/<path:path>")
-    def datasets(path: str) -> Response:
+    def datasets(path: str) -> Response | BaseResponse:
         parts = path.strip("/").split("/")
         full = safe_join(str(root), path)
         if full is None:

@@ -84,7 +84,8 @@ def write_pyramid(
     info = _info_json(width, height, service_id, fmt, tile_size, factors)
     for size in info.get("sizes", []):
         sw, sh = size["width"], size["height"]
-        _ensure(image, out_dir, fmt, geo.TileRequest(0, 0, width, height, sw, sh), f"full/{sw},{sh}")
+        _ensure(image, out_dir, fmt, geo.TileRequest(0, 0, width, height, sw, sh),
+                f"full/{sw},{sh}")
     _write_full_max(image, out_dir, fmt)
     (out_dir / "info.json").write_text(json.dumps(info, indent=2))
     return info

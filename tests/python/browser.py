@@ -55,7 +55,8 @@ def render(url: str, shots: list[Shot], viewport: tuple[int, int] = (640, 480),
     proc = subprocess.run(["node", str(RENDER), str(spec_path)], capture_output=True, text=True,
                           timeout=timeout, cwd=REPO)
     if proc.returncode != 0:
-        raise AssertionError(f"render.mjs failed ({proc.returncode}):\n{proc.stdout}\n{proc.stderr}")
+        raise AssertionError(
+            f"render.mjs failed ({proc.returncode}):\n{proc.stdout}\n{proc.stderr}")
     frames = []
     for s in shots:
         meta = json.loads(Path(str(s.out) + ".json").read_text())

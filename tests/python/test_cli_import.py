@@ -90,8 +90,8 @@ def test_bad_ptm_is_one_line_error_and_nothing_written(tmp_path: Path,
     assert _leftovers(out) == []
 
 
-def test_failure_mid_write_leaves_nothing_and_keeps_previous(tmp_path: Path,
-                                                             monkeypatch: pytest.MonkeyPatch) -> None:
+def test_failure_mid_write_leaves_nothing_and_keeps_previous(
+        tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
     src = tmp_path / "a.ptm"
     write_ptm(src, random_ptm(64, 48), "PTM_FORMAT_LRGB")
     out = tmp_path / "out" / "a"
@@ -123,7 +123,8 @@ def test_existing_output_needs_force(tmp_path: Path, capsys: pytest.CaptureFixtu
     assert json.loads((tmp_path / "a/lanterna.json").read_text())["label"] == "B"
 
 
-def test_missing_source_and_bad_tile_size(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+def test_missing_source_and_bad_tile_size(tmp_path: Path,
+                                          capsys: pytest.CaptureFixture[str]) -> None:
     assert main(["import", str(tmp_path / "nope.ptm"), "-o", str(tmp_path / "x")]) == 2
     assert "nope.ptm: no such file" in capsys.readouterr().err
     assert main(["import", str(tmp_path / "nope.ptm"), "-o", str(tmp_path / "x"),

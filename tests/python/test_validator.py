@@ -32,8 +32,8 @@ def test_level0_validator_passes(tmp_path: Path,
         add_image_layer(ds, img, layer_id=IDENT, label="IIIF validator test image")
     server = live_server(root)
     proc = subprocess.run(
-        [sys.executable, validate, "-s", f"127.0.0.1:{server.port}", "-p", "datasets/validator/iiif",
-         "-i", IDENT, "--version=3.0", "--level", "0", "-v"],
+        [sys.executable, validate, "-s", f"127.0.0.1:{server.port}",
+         "-p", "datasets/validator/iiif", "-i", IDENT, "--version=3.0", "--level", "0", "-v"],
         capture_output=True, text=True, timeout=120,
     )
     report = proc.stdout + proc.stderr
