@@ -7,6 +7,7 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+import pyvips
 
 from lanterna.tiler.errors import LanternaInputError
 from lanterna.tiler.ptm import ptm_normals, read_ptm
@@ -412,6 +413,16 @@ def _truncate_stream_consistently(data: bytes, plane: int) -> bytes:
     return _replace_line(data, 12, " ".join(map(str, sizes)))
 
 
+def _colour_stream(data: bytes, plane: int) -> bytes:
+    """Replace one stream by a 3-band JPEG of the right size and fix the sizes line."""
+    start, sizes, sides = _jpeg_offsets(data)
+    begin = start + sum(sizes[:plane]) + sum(sides[:plane])
+    colour = pyvips.Image.black(40, 24, bands=3).jpegsave_buffer(Q=90)
+    data = data[:begin] + colour + data[begin + sizes[plane] :]
+    sizes[plane] = len(colour)
+    return _replace_line(data, 12, " ".join(map(str, sizes)))
+
+
 def _bad_side_index(data: bytes) -> bytes:
     start, sizes, sides = _jpeg_offsets(data)
     assert sides[0] >= 5
@@ -440,6 +451,11 @@ BAD_CASES: list[BadCase] = [
         "truncated JPEG stream, sizes consistent",
         lambda t: _truncate_stream_consistently(_jpeg_lrgb(t), 2),
         "JPEG stream 2 is corrupt or truncated",
+    ),
+    (
+        "colour JPEG stream",
+        lambda t: _colour_stream(_jpeg_lrgb(t), 1),
+        "JPEG stream 1 is 40x24 with 3 bands",
     ),
     (
         "side-info index out of range",
