@@ -1,0 +1,39 @@
+/**
+ * Error classes raised while reading a Lanterna manifest or its IIIF image services.
+ */
+
+/** Base class of every error the plugin raises on purpose. */
+export class LanternaError extends Error {
+  constructor(message: string, options?: ErrorOptions) {
+    super(message, options);
+    this.name = new.target.name;
+  }
+}
+
+/** The manifest is not a usable IIIF Presentation 3 manifest (no canvas, no painting image...). */
+export class ManifestError extends LanternaError {}
+
+/** The painting image has no `LanternaRelight` service. */
+export class MissingRelightServiceError extends ManifestError {}
+
+/** The `LanternaRelight` service block breaks the contract (`docs/dataset-format.md`). */
+export class RelightServiceError extends ManifestError {}
+
+/** An IIIF `info.json` is malformed or disagrees with the relight service block. */
+export class ImageInfoError extends LanternaError {}
+
+/** The plane groups of one layer do not share width, height, tile size and scale factors. */
+export class MismatchedPlanesError extends ImageInfoError {}
+
+/** A network request failed (HTTP status or network error). */
+export class FetchError extends LanternaError {
+  /** The URL that failed. */
+  readonly url: string;
+  /** HTTP status, or 0 for a network error. */
+  readonly status: number;
+  constructor(url: string, status: number, message: string, options?: ErrorOptions) {
+    super(message, options);
+    this.url = url;
+    this.status = status;
+  }
+}

@@ -1,0 +1,176 @@
+/**
+ * A TileSource whose tiles are bundles of K plane images (one per plane group of a relight layer),
+ * so OpenSeadragon's level choice, coverage, cache and abort apply to all planes in lockstep.
+ */
+import OpenSeadragon from 'openseadragon';
+import { ImageInfoError, FetchError } from '../iiif/errors';
+import type { ImageGeometry } from '../iiif/image-info';
+import { BUNDLE_DATA_TYPE, registerBundleType, type PlaneBundle } from './bundle';
+import { bundleKey } from './tile-key';
+
+/** Constructor options of {@link BundleTileSource}. */
+export interface BundleTileSourceOptions {
+  /** The IIIF `info.json` documents, one per plane group, in plane order. */
+  readonly infos: readonly Record<string, unknown>[];
+  /** The common geometry of the plane groups (see `commonGeometry`). */
+  readonly geometry: ImageGeometry;
+  /** Tile format per plane group, e.g. `png`; overrides `preferredFormats`. */
+  readonly formats?: readonly string[];
+  /** Index of the plane group used for previews (the colour group). @default 0 */
+  readonly previewIndex?: number;
+  /** `fetch` credentials mode. @default 'same-origin' */
+  readonly credentials?: RequestCredentials;
+}
+
+/** Per-job state kept on the OSD ImageJob's userData. */
+interface JobState {
+  controller?: AbortController;
+}
+
+interface TileJob {
+  tile: { level: number; x: number; y: number };
+  userData: Record<string, unknown>;
+  finish(data: unknown, request: unknown, dataType: string): void;
+  fail(message: string, request: unknown): void;
+}
+
+/** A plane URL builder: OSD's own IIIF tile source, so URLs match what OSD would request. */
+interface IIIFSource {
+  getTileUrl(level: number, x: number, y: number): string;
+  getTileWidth(level: number): number;
+  getTileHeight(level: number): number;
+  getLevelScale(level: number): number;
+  getNumTiles(level: number): OpenSeadragon.Point;
+  getTileAtPoint(level: number, point: OpenSeadragon.Point): OpenSeadragon.Point;
+}
+
+function makeIiifSource(info: Record<string, unknown>, format: string | undefined): IIIFSource {
+  const Iiif = (OpenSeadragon as unknown as { IIIFTileSource: new (o: object) => IIIFSource }).IIIFTileSource;
+  const proto = Iiif.prototype as unknown as { configure(d: object, u: string): object };
+  const json: Record<string, unknown> = structuredClone(info);
+  const options = proto.configure(json, `${String(json.id)}/info.json`) as Record<string, unknown>;
+  if (format) {
+    options.tileFormat = format;
+  }
+  return new Iiif(options);
+}
+
+/**
+ * Tile source of one relightable layer. Geometry and URLs come from K `IIIFTileSource`s (one per
+ * plane group); a tile's data is a {@link PlaneBundle} of type `lanternaBundle`.
+ */
+export class BundleTileSource extends OpenSeadragon.TileSource {
+  /** URL builders, one per plane group (assigned after `super()`: TileSource deep-copies options). */
+  declare planeSources: IIIFSource[];
+  declare previewIndex: number;
+  declare credentials: RequestCredentials;
+
+  constructor(options: BundleTileSourceOptions) {
+    const g = options.geometry;
+    const maxLevel = Math.round(Math.log2(Math.max(...g.scaleFactors)));
+    super({
+      width: g.width,
+      height: g.height,
+      tileWidth: g.tileWidth,
+      tileHeight: g.tileHeight,
+      tileOverlap: 0,
+      minLevel: 0,
+      maxLevel,
+      ready: true,
+    });
+    if (options.infos.length === 0) {
+      throw new ImageInfoError('a bundle tile source needs at least one info.json');
+    }
+    registerBundleType();
+    this.planeSources = options.infos.map((info, i) => makeIiifSource(info, options.formats?.[i]));
+    this.previewIndex = options.previewIndex ?? 0;
+    this.credentials = options.credentials ?? 'same-origin';
+  }
+
+  private get primary(): IIIFSource {
+    const p = this.planeSources[0];
+    if (!p) {
+      throw new ImageInfoError('no plane sources');
+    }
+    return p;
+  }
+
+  /** The K plane URLs of a tile, in plane order. */
+  getPlaneUrls(level: number, x: number, y: number): string[] {
+    return this.planeSources.map((s) => s.getTileUrl(level, x, y));
+  }
+
+  override getTileUrl(level: number, x: number, y: number): string {
+    return this.primary.getTileUrl(level, x, y);
+  }
+
+  override getTileHashKey(level: number, x: number, y: number): string {
+    return bundleKey(this.getPlaneUrls(level, x, y));
+  }
+
+  override getTileWidth(level: number): number {
+    return this.primary.getTileWidth(level);
+  }
+
+  override getTileHeight(level: number): number {
+    return this.primary.getTileHeight(level);
+  }
+
+  override getLevelScale(level: number): number {
+    return this.primary.getLevelScale(level);
+  }
+
+  override getNumTiles(level: number): OpenSeadragon.Point {
+    return this.primary.getNumTiles(level);
+  }
+
+  // The shipped typings say this returns a Tile; OSD really returns the tile's (x, y) as a Point.
+  override getTileAtPoint(level: number, point: OpenSeadragon.Point): OpenSeadragon.Tile {
+    return this.primary.getTileAtPoint(level, point) as unknown as OpenSeadragon.Tile;
+  }
+
+  override hasTransparency(): boolean {
+    return false;
+  }
+
+  override equals(other: unknown): boolean {
+    return other instanceof BundleTileSource
+      && other.planeSources.length === this.planeSources.length
+      && other.getPlaneUrls(0, 0, 0).join() === this.getPlaneUrls(0, 0, 0).join();
+  }
+
+  override downloadTileStart(context: OpenSeadragon.ImageJob): void {
+    const job = context as unknown as TileJob;
+    const state: JobState = { controller: new AbortController() };
+    job.userData.lanterna = state;
+    const { level, x, y } = job.tile;
+    const urls = this.getPlaneUrls(level, x, y);
+    const signal = state.controller?.signal;
+    const previewIndex = this.previewIndex;
+    Promise.all(urls.map(async (url) => {
+      const response = await fetch(url, { mode: 'cors', credentials: this.credentials, signal });
+      if (!response.ok) {
+        throw new FetchError(url, response.status, `HTTP ${response.status} for ${url}`);
+      }
+      const blob = await response.blob();
+      return createImageBitmap(blob, { premultiplyAlpha: 'none', colorSpaceConversion: 'none' });
+    })).then((bitmaps) => {
+      const first = bitmaps[0];
+      if (!first || bitmaps.some((b) => b.width !== first.width || b.height !== first.height)) {
+        bitmaps.forEach((b) => { b.close(); });
+        job.fail(`[lanterna] plane tiles of ${urls[0] ?? ''} differ in size`, null);
+        return;
+      }
+      const bundle: PlaneBundle = { bitmaps, previewIndex, width: first.width, height: first.height };
+      job.finish(bundle, null, BUNDLE_DATA_TYPE);
+    }, (error: unknown) => {
+      job.fail(`[lanterna] ${error instanceof Error ? error.message : String(error)}`, null);
+    });
+  }
+
+  override downloadTileAbort(context: OpenSeadragon.ImageJob): void {
+    const job = context as unknown as TileJob;
+    const state = job.userData.lanterna as JobState | undefined;
+    state?.controller?.abort();
+  }
+}

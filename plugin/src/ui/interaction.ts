@@ -1,0 +1,107 @@
+/**
+ * Pointer interaction on the viewer: a plain drag moves the light (or pans, in pan mode),
+ * Shift+drag does the other; right- or middle-drag always pans; wheel and pinch zoom (OSD default).
+ */
+import OpenSeadragon from 'openseadragon';
+
+/** What a plain primary-button (or one-finger) drag does. */
+export type DragMode = 'light' | 'pan';
+
+/** Options of {@link attachInteraction}. */
+export interface InteractionOptions {
+  /** Current drag mode. */
+  getMode(): DragMode;
+  /** Called with the pointer position in the viewer element (CSS px) and the element size. */
+  moveLight(x: number, y: number, width: number, height: number): void;
+}
+
+interface PointerEventArgs {
+  position: OpenSeadragon.Point;
+  shift?: boolean;
+  button?: number;
+  originalEvent?: Event;
+  preventDefaultAction?: boolean;
+}
+
+/**
+ * Install the handlers; returns a function removing them.
+ */
+export function attachInteraction(viewer: OpenSeadragon.Viewer, options: InteractionOptions): () => void {
+  const element = viewer.element;
+  const drivesLight = (shift: boolean): boolean => (options.getMode() === 'light') !== shift;
+  const shiftOf = (e: PointerEventArgs): boolean =>
+    e.shift ?? (e.originalEvent instanceof MouseEvent ? e.originalEvent.shiftKey : false);
+  let lightDrag = false;
+
+  const light = (e: PointerEventArgs): void => {
+    options.moveLight(e.position.x, e.position.y, element.clientWidth, element.clientHeight);
+  };
+  const onPress = (e: PointerEventArgs): void => {
+    lightDrag = drivesLight(shiftOf(e));
+    if (lightDrag) {
+      light(e);
+    }
+  };
+  const onDrag = (e: PointerEventArgs): void => {
+    if (lightDrag || drivesLight(shiftOf(e))) {
+      e.preventDefaultAction = true;
+      light(e);
+    }
+  };
+  const onDragEnd = (e: PointerEventArgs): void => {
+    if (lightDrag) {
+      e.preventDefaultAction = true; // no flick
+    }
+  };
+  const onClick = (e: PointerEventArgs): void => {
+    if (lightDrag) {
+      e.preventDefaultAction = true; // no click-to-zoom while lighting
+    }
+  };
+
+  // Right/middle drag pans, in either mode.
+  let panFrom: { x: number; y: number } | null = null;
+  const onPanMove = (ev: PointerEvent): void => {
+    if (!panFrom) {
+      return;
+    }
+    const delta = new OpenSeadragon.Point(panFrom.x - ev.clientX, panFrom.y - ev.clientY);
+    panFrom = { x: ev.clientX, y: ev.clientY };
+    viewer.viewport.panBy(viewer.viewport.deltaPointsFromPixels(delta, true), true);
+  };
+  const onPanEnd = (): void => {
+    panFrom = null;
+    window.removeEventListener('pointermove', onPanMove);
+    window.removeEventListener('pointerup', onPanEnd);
+    viewer.viewport.applyConstraints();
+  };
+  const onNonPrimaryPress = (e: PointerEventArgs): void => {
+    if ((e.button === 1 || e.button === 2) && e.originalEvent instanceof PointerEvent) {
+      panFrom = { x: e.originalEvent.clientX, y: e.originalEvent.clientY };
+      window.addEventListener('pointermove', onPanMove);
+      window.addEventListener('pointerup', onPanEnd);
+    }
+  };
+  const onContextMenu = (ev: Event): void => { ev.preventDefault(); };
+
+  const handlers: [string, (e: PointerEventArgs) => void][] = [
+    ['canvas-press', onPress],
+    ['canvas-drag', onDrag],
+    ['canvas-drag-end', onDragEnd],
+    ['canvas-click', onClick],
+    ['canvas-nonprimary-press', onNonPrimaryPress],
+  ];
+  const add = viewer.addHandler.bind(viewer) as (name: string, h: (e: PointerEventArgs) => void) => void;
+  const remove = viewer.removeHandler.bind(viewer) as (name: string, h: (e: PointerEventArgs) => void) => void;
+  for (const [name, h] of handlers) {
+    add(name, h);
+  }
+  element.addEventListener('contextmenu', onContextMenu);
+  return () => {
+    for (const [name, h] of handlers) {
+      remove(name, h);
+    }
+    element.removeEventListener('contextmenu', onContextMenu);
+    onPanEnd();
+  };
+}

@@ -1,0 +1,19 @@
+import { defineConfig } from 'vite';
+
+/** Library build: ESM bundle of the plugin; openseadragon and twgl.js stay external peers. */
+export default defineConfig({
+  root: import.meta.dirname,
+  build: {
+    outDir: 'dist/lib',
+    emptyOutDir: true,
+    sourcemap: true,
+    lib: {
+      entry: 'src/index.ts',
+      formats: ['es'],
+      fileName: () => 'lanterna.js',
+    },
+    rollupOptions: {
+      external: ['openseadragon', 'twgl.js'],
+    },
+  },
+});

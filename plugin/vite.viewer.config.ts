@@ -1,0 +1,16 @@
+import { defineConfig } from 'vite';
+
+/**
+ * Viewer page build. `base: './'` keeps every asset path relative, so the page works when served
+ * at `/viewer/` by `lanterna serve` and from any static host.
+ */
+export default defineConfig({
+  root: import.meta.dirname,
+  base: './',
+  build: {
+    outDir: 'dist/viewer',
+    emptyOutDir: true,
+    sourcemap: true,
+    chunkSizeWarningLimit: 1024,
+  },
+});

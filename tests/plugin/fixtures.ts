@@ -1,0 +1,74 @@
+/** Shared test fixtures: a manifest and info.json shaped like the contract's examples. */
+
+const BASE = 'http://127.0.0.1:8000/datasets/ushabti';
+
+export function relightBlock(): Record<string, unknown> {
+  return {
+    id: `${BASE}/layers/ptm.json`,
+    type: 'LanternaRelight',
+    profile: 'urn:lanterna:relight:1',
+    layerType: 'ptm',
+    colorspace: 'lrgb',
+    basis: ['lu2', 'lv2', 'lulv', 'lu', 'lv', '1'],
+    width: 512,
+    height: 1024,
+    planes: [
+      { service: { id: `${BASE}/iiif/ptm_c0`, type: 'ImageService3', profile: 'level0' }, format: 'png',
+        channels: ['L0', 'L1', 'L2'], scale: [2, 2, 2], bias: [0.627, 0.627, 0.627] },
+      { service: { id: `${BASE}/iiif/ptm_c1`, type: 'ImageService3', profile: 'level0' }, format: 'png',
+        channels: ['L3', 'L4', 'L5'], scale: [2, 2, 0], bias: [0.498, 0.498, 0] },
+      { service: { id: `${BASE}/iiif/ptm_color`, type: 'ImageService3', profile: 'level0' }, format: 'png',
+        channels: ['R', 'G', 'B'], scale: [1, 1, 1], bias: [0, 0, 0] },
+    ],
+  };
+}
+
+export function manifest(body?: unknown): Record<string, unknown> {
+  const image = body ?? {
+    id: `${BASE}/iiif/ptm_color/full/max/0/default.jpg`,
+    type: 'Image',
+    format: 'image/jpeg',
+    service: [
+      { id: `${BASE}/iiif/ptm_color`, type: 'ImageService3', profile: 'level0' },
+      relightBlock(),
+    ],
+  };
+  return {
+    '@context': 'http://iiif.io/api/presentation/3/context.json',
+    id: `${BASE}/manifest.json`,
+    type: 'Manifest',
+    label: { en: ['Ushabti'] },
+    items: [{
+      id: `${BASE}/canvas/1`,
+      type: 'Canvas',
+      width: 512,
+      height: 1024,
+      items: [{
+        id: `${BASE}/canvas/1/page`,
+        type: 'AnnotationPage',
+        items: [{
+          id: `${BASE}/canvas/1/page/anno`,
+          type: 'Annotation',
+          motivation: 'painting',
+          target: `${BASE}/canvas/1`,
+          body: image,
+        }],
+      }],
+    }],
+  };
+}
+
+export function info(overrides: Record<string, unknown> = {}): Record<string, unknown> {
+  return {
+    '@context': 'http://iiif.io/api/image/3/context.json',
+    id: `${BASE}/iiif/ptm_c0`,
+    type: 'ImageService3',
+    protocol: 'http://iiif.io/api/image',
+    profile: 'level0',
+    width: 512,
+    height: 1024,
+    tiles: [{ width: 256, height: 256, scaleFactors: [1, 2, 4] }],
+    preferredFormats: ['png'],
+    ...overrides,
+  };
+}
