@@ -34,8 +34,8 @@ INSCRIPTION = ("LANTERNA", "LVX IN TENEBRIS LVCET")
 
 _STONE = np.array([0.78, 0.69, 0.54], dtype=np.float32)
 _PAINT = np.array([0.50, 0.17, 0.11], dtype=np.float32)
-_GOLD = np.array([0.40, 0.26, 0.07], dtype=np.float32)
-_GOLD_SPECULAR = np.array([0.58, 0.45, 0.20], dtype=np.float32)
+_GOLD = np.array([0.28, 0.18, 0.05], dtype=np.float32)
+_GOLD_SPECULAR = np.array([0.70, 0.55, 0.25], dtype=np.float32)
 _BACKGROUND = np.array([0.035, 0.035, 0.04], dtype=np.float32)
 
 
@@ -346,7 +346,7 @@ def make_demo_object(width: int = 1024, height: int = 768, seed: int = 0) -> Dem
         normals=normals,
         albedo=np.clip(albedo, 0.0, 1.0).astype(np.float32),
         specular=(disc * inside).astype(np.float32),
-        shininess=20.0,
+        shininess=14.0,
         specular_color=_GOLD_SPECULAR.copy(),
     )
 
