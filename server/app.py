@@ -14,8 +14,8 @@ from pathlib import Path
 from typing import Any
 
 from flask import Flask, Response, abort, redirect, request, send_from_directory
-from werkzeug.wrappers import Response as BaseResponse
 from werkzeug.security import safe_join
+from werkzeug.wrappers import Response as BaseResponse
 
 IMAGE_CONTEXT = "http://iiif.io/api/image/3/context.json"
 PRESENTATION_CONTEXT = "http://iiif.io/api/presentation/3/context.json"
