@@ -107,3 +107,18 @@ def test_index_lists_datasets_and_viewer_is_served(client: FlaskClient) -> None:
 def test_create_app_needs_a_data_root() -> None:
     with pytest.raises(ValueError):
         create_app({})
+
+
+def test_every_tile_url_openseadragon_requests_is_served(root: Path, client: FlaskClient) -> None:
+    from lanterna.tiler import iiif_geometry as geo
+
+    for image in ("ptm_c0", "ptm_c1", "ptm_color", "ptm_preview"):
+        info = client.get(f"/datasets/obj/iiif/{image}/info.json").get_json()
+        fmt = info.get("preferredFormats", ["jpg"])[0]
+        tiles = info["tiles"][0]
+        paths = list(geo.osd_tile_paths(info["width"], info["height"], tiles["width"],
+                                        tiles["scaleFactors"]))
+        assert len(paths) >= 3
+        for path in paths:
+            with client.head(f"/datasets/obj/iiif/{image}/{path}/0/default.{fmt}") as resp:
+                assert resp.status_code == 200, (image, path)
