@@ -175,8 +175,8 @@ export function createViewer(options: CreateViewerOptions): LanternaViewer {
     getMode: () => mode,
     showImageRegion(x: number, y: number, width: number, height: number) {
       const rect = item().imageToViewportRectangle(x, y, width, height);
+      // No viewport.update() here: OSD's own update must see the change to recompute the levels.
       viewer.viewport.fitBounds(rect, true);
-      viewer.viewport.update();
       viewer.forceRedraw();
     },
     async whenFullyLoaded() {
