@@ -147,24 +147,34 @@ export class BundleTileSource extends OpenSeadragon.TileSource {
     const urls = this.getPlaneUrls(level, x, y);
     const signal = state.controller?.signal;
     const previewIndex = this.previewIndex;
-    Promise.all(urls.map(async (url) => {
+    void Promise.allSettled(urls.map(async (url) => {
       const response = await fetch(url, { mode: 'cors', credentials: this.credentials, signal });
       if (!response.ok) {
         throw new FetchError(url, response.status, `HTTP ${response.status} for ${url}`);
       }
       const blob = await response.blob();
       return createImageBitmap(blob, { premultiplyAlpha: 'none', colorSpaceConversion: 'none' });
-    })).then((bitmaps) => {
+    })).then((results) => {
+      const bitmaps: ImageBitmap[] = [];
+      let error: unknown = null;
+      for (const r of results) {
+        if (r.status === 'fulfilled') {
+          bitmaps.push(r.value);
+        } else {
+          error ??= r.reason;
+        }
+      }
       const first = bitmaps[0];
-      if (!first || bitmaps.some((b) => b.width !== first.width || b.height !== first.height)) {
+      if (error !== null || !first || bitmaps.some((b) => b.width !== first.width || b.height !== first.height)) {
+        // One missing or odd plane fails the whole bundle; free the planes that did arrive.
         bitmaps.forEach((b) => { b.close(); });
-        job.fail(`[lanterna] plane tiles of ${urls[0] ?? ''} differ in size`, null);
+        const reason = error === null ? 'plane tiles differ in size'
+          : error instanceof Error ? error.message : 'download failed';
+        job.fail(`[lanterna] ${urls[0] ?? ''}: ${reason}`, null);
         return;
       }
       const bundle: PlaneBundle = { bitmaps, previewIndex, width: first.width, height: first.height };
       job.finish(bundle, null, BUNDLE_DATA_TYPE);
-    }, (error: unknown) => {
-      job.fail(`[lanterna] ${error instanceof Error ? error.message : String(error)}`, null);
     });
   }
 
