@@ -107,3 +107,31 @@ def test_relit_pixels_match_numpy(tmp_path: Path, live_server: Callable[[Path], 
         assert expected.std() > 10
         checked += diff.shape[0] * diff.shape[1]
     assert checked >= 4 * vw * vh
+
+
+@pytest.mark.realdata
+def test_real_ushabti_is_relit_from_the_side_the_light_comes_from(
+        tmp_path: Path, live_server: Callable[[Path], LiveServer]) -> None:
+    from lanterna.cli import main
+
+    from .conftest import shared_file
+
+    src = shared_file("realdata/chi-ushabti-vase/ushabti.ptm")
+    root = tmp_path / "root"
+    assert main(["import", str(src), "-o", str(root / "ushabti")]) == 0
+    server = live_server(root)
+    url = f"{server.url}/viewer/?manifest={server.url}/datasets/ushabti/manifest.json"
+    # the whole figure, 512x1024, at zoom 1/2 in a 256x512 viewport
+    shots = [Shot((lu, 0.0), (0, 0, 512, 1024), tmp_path / f"u{i}.rgba")
+             for i, lu in enumerate((-0.8, 0.8))]
+    left_lit, right_lit = (f[..., :3].astype(np.float64).mean(axis=-1)
+                           for f in render(url, shots, viewport=(256, 512)))
+    half = left_lit.shape[1] // 2
+    # light from the left: the left half of the figure is brighter than the right, and vice versa
+    assert left_lit[:, :half].mean() > 1.3 * left_lit[:, half:].mean()
+    assert right_lit[:, half:].mean() > 1.3 * right_lit[:, :half].mean()
+    # upright: the head and shoulders (top third) are wider than the feet (bottom third)
+    mask = (left_lit + right_lit) > 40
+    widths = mask.sum(axis=1)
+    third = len(widths) // 3
+    assert widths[:third].mean() > 1.1 * widths[-third:].mean()  # measured 1.23
