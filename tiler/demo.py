@@ -13,7 +13,7 @@ DEMO_SIZE = (1536, 1152)
 def build_demo(out: Path, *, base_url: str = DEFAULT_BASE_URL, force: bool = False,
                size: tuple[int, int] = DEMO_SIZE) -> Path:
     """Generate the demo object, fit its PTM and write it as dataset ``out``."""
-    from .demo_object import make_demo_ptm
+    from .demo_render import make_demo_ptm
 
     ptm = make_demo_ptm(width=size[0], height=size[1], seed=0)
     label = "Lanterna demo tablet (synthetic)"

@@ -13,6 +13,7 @@ import numpy.typing as npt
 import pyvips
 
 from lanterna.tiler.ptm_model import Ptm
+from lanterna.tiler.ptm_write import PtmPrediction
 
 SCALE = np.array([0.5, 0.25, 1.5, 2.0, 3.0, 0.00390625], dtype=np.float32)
 BIAS = np.array([160, 150, 128, 127, -5, 0], dtype=np.int32)
@@ -119,3 +120,29 @@ def header_bytes(
 ) -> bytes:
     """Return the six common header lines."""
     return f"{version}\n{fmt}\n{width}\n{height}\n{scale}\n{bias}\n".encode()
+
+
+def with_overflow(ptm: Ptm) -> Ptm:
+    """Put extreme values at pixel (row 2, col 5) so predicted residuals must be clipped."""
+    coeffs = ptm.coefficients.copy()
+    rgb = None if ptm.rgb is None else ptm.rgb.copy()
+    if ptm.colorspace == "lrgb":
+        assert rgb is not None
+        coeffs[2, 5, 0], coeffs[2, 5, 5] = 3, 3  # plane 0 predicted from inverted plane 5
+        rgb[2, 5, 0], rgb[2, 5, 1] = 250, 4  # plane 6 predicted from plane 7
+    else:
+        coeffs[2, 5, 0, 1], coeffs[2, 5, 0, 0] = 250, 2  # plane 1 predicted from plane 0
+        coeffs[2, 5, 1, 0], coeffs[2, 5, 0, 0] = 2, 2  # plane 6 predicted from inverted plane 0
+    return Ptm(ptm.colorspace, coeffs, ptm.scale, ptm.bias, rgb)
+
+
+LRGB_PREDICTION = PtmPrediction(
+    order=[8, 4, 3, 2, 1, 7, 5, 0, 6],
+    reference=[5, -1, -1, -1, -1, 1, 7, -1, 7],
+    transform=[1, 0, 0, 0, 0, 1, 0, 0, 0],
+)
+RGB_PREDICTION = PtmPrediction(
+    order=[0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 17, 16, 15, 14, 13, 12],
+    reference=[-1, 0, 0, 1, -1, 4, 0, 6, 6, -1, -1, -1, 17, -1, -1, -1, -1, 0],
+    transform=[0, 0, 1, 0, 0, 1, 1, 0, 0, 0, 0, 0, 1, 0, 0, 0, 0, 0],
+)

@@ -6,15 +6,8 @@ import numpy as np
 import numpy.typing as npt
 import pytest
 
-from lanterna.tiler.demo_object import (
-    DemoObject,
-    demo_lights,
-    make_demo_object,
-    make_demo_ptm,
-    normals_from_height,
-    render,
-    render_stack,
-)
+from lanterna.tiler.demo_object import DemoObject, make_demo_object, normals_from_height
+from lanterna.tiler.demo_render import demo_lights, make_demo_ptm, render, render_stack
 from lanterna.tiler.ptm_fit import (
     LUMINANCE_WEIGHTS,
     fit_ptm_lrgb,
