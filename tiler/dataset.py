@@ -18,6 +18,8 @@ import numpy as np
 import numpy.typing as npt
 import pyvips
 
+from lanterna.manifests.build import build_manifest
+
 from .errors import LanternaInputError
 from .pyramid import vips_from_array, write_pyramid
 
@@ -134,8 +136,6 @@ class DatasetWriter:
         }
 
     def _finish(self) -> None:
-        from lanterna.manifests.build import build_manifest
-
         assert self._tmp is not None
         if not self.layers:
             raise ValueError("a dataset needs at least one layer")
