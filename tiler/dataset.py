@@ -60,6 +60,7 @@ class DatasetWriter:
         self.force = force
         self.images: dict[str, dict[str, Any]] = {}
         self.layers: list[dict[str, Any]] = []
+        self._shared: dict[str, str] = {}
         self._tmp: Path | None = None
 
     # -- context manager -------------------------------------------------------------------
@@ -86,9 +87,15 @@ class DatasetWriter:
         return f"{self.base_url}/{self.name}"
 
     def add_image(self, identifier: str, image: npt.NDArray[np.uint8] | pyvips.Image, *,
-                  fmt: str = "png") -> dict[str, Any]:
-        """Tile ``image`` as IIIF image ``identifier``; return its ``ImageService3`` reference."""
+                  fmt: str = "png", share_key: str | None = None) -> dict[str, Any]:
+        """Tile ``image`` as IIIF image ``identifier``; return its ``ImageService3`` reference.
+
+        Images given the same ``share_key`` (e.g. the resolved path of a normal map used by several
+        layers) are stored and served once: later calls return the first image's service.
+        """
         assert self._tmp is not None, "use DatasetWriter as a context manager"
+        if share_key is not None and share_key in self._shared:
+            return self._service(self._shared[share_key])
         check_identifier(identifier, "image identifier")
         if identifier in self.images:
             raise ValueError(f"image {identifier!r} added twice")
@@ -100,8 +107,15 @@ class DatasetWriter:
         service_id = f"{self.dataset_url}/iiif/{identifier}"
         write_pyramid(vimg, self._tmp / "iiif" / identifier, service_id, fmt=fmt,
                       tile_size=self.tile_size)
-        self.images[identifier] = {"format": fmt, "width": vimg.width, "height": vimg.height}
-        return {"id": service_id, "type": "ImageService3", "profile": "level0"}
+        self.images[identifier] = {"format": fmt, "width": vimg.width, "height": vimg.height,
+                                   "bands": vimg.bands}
+        if share_key is not None:
+            self._shared[share_key] = identifier
+        return self._service(identifier)
+
+    def _service(self, identifier: str) -> dict[str, Any]:
+        return {"id": f"{self.dataset_url}/iiif/{identifier}", "type": "ImageService3",
+                "profile": "level0"}
 
     def add_layer(self, layer: dict[str, Any]) -> None:
         """Add a layer: ``{"id", "label", "layerType", "body": image id, ...relight fields}``."""

@@ -5,7 +5,7 @@ from __future__ import annotations
 from pathlib import Path
 
 from .dataset import DEFAULT_BASE_URL, DatasetWriter
-from .importers import add_ptm_layer
+from .layers import add_ptm_layer
 
 DEMO_SIZE = (1536, 1152)
 

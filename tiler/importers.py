@@ -1,67 +1,16 @@
-"""Turn source files (a .ptm, a plain image) into dataset layers."""
+"""Turn source files (a .ptm, a plain image) into datasets."""
 
 from __future__ import annotations
 
 from pathlib import Path
-from typing import Any
 
-import numpy as np
 import pyvips
 
 from .dataset import DEFAULT_BASE_URL, DatasetWriter, check_identifier
 from .errors import LanternaInputError
-from .ptm_model import PTM_BASIS, Ptm
+from .layers import add_image_layer, add_ptm_layer
 
 IMAGE_SUFFIXES = {".png", ".jpg", ".jpeg", ".tif", ".tiff", ".webp"}
-
-
-def add_ptm_layer(ds: DatasetWriter, ptm: Ptm, *, layer_id: str = "ptm",
-                  label: str = "PTM") -> dict[str, Any]:
-    """Tile the planes of ``ptm`` (3 per image, the PTM's own bytes) and add it as a layer.
-
-    The file's ``a = (byte − b)·s`` in 0–255 units becomes ``(t − b/255)·s`` with ``t`` in
-    0–1 (docs/dataset-format.md), so the stored texels are exactly the PTM's bytes.
-    """
-    scale = [float(s) for s in ptm.scale]
-    bias = [float(b) / 255.0 for b in ptm.bias]
-    planes: list[dict[str, Any]] = []
-
-    def group(ident: str, data: np.ndarray, channels: list[str], sc: list[float],
-              bi: list[float]) -> None:
-        svc = ds.add_image(ident, np.ascontiguousarray(data), fmt="png")
-        planes.append({"service": svc, "format": "png", "channels": channels,
-                       "scale": sc, "bias": bi})
-
-    if ptm.colorspace == "lrgb":
-        assert ptm.rgb is not None
-        for g in range(2):
-            k = slice(3 * g, 3 * g + 3)
-            group(f"{layer_id}_c{g}", ptm.coefficients[..., k],
-                  [f"L{i}" for i in range(3 * g, 3 * g + 3)], scale[k], bias[k])
-        group(f"{layer_id}_color", ptm.rgb, ["R", "G", "B"], [1.0] * 3, [0.0] * 3)
-    else:
-        for c, name in enumerate("RGB"):
-            for g in range(2):
-                k = slice(3 * g, 3 * g + 3)
-                group(f"{layer_id}_{name.lower()}{g}", ptm.coefficients[:, :, c, k],
-                      [f"{name}{i}" for i in range(3 * g, 3 * g + 3)], scale[k], bias[k])
-    preview = np.round(ptm.relight(0.0, 0.0) * 255.0).astype(np.uint8)
-    ds.add_image(f"{layer_id}_preview", preview, fmt="jpg")
-    layer = {"id": layer_id, "label": label, "body": f"{layer_id}_preview", "layerType": "ptm",
-             "colorspace": ptm.colorspace, "basis": list(PTM_BASIS), "planes": planes}
-    ds.add_layer(layer)
-    return layer
-
-
-def add_image_layer(ds: DatasetWriter, image: pyvips.Image, *, layer_id: str = "image",
-                    label: str = "Image", fmt: str = "jpg") -> dict[str, Any]:
-    """Add a plain (unshaded) RGB image layer."""
-    svc = ds.add_image(layer_id, image, fmt=fmt)
-    layer = {"id": layer_id, "label": label, "body": layer_id, "layerType": "image",
-             "planes": [{"service": svc, "format": fmt, "channels": ["R", "G", "B"],
-                         "scale": [1.0] * 3, "bias": [0.0] * 3}]}
-    ds.add_layer(layer)
-    return layer
 
 
 def load_rgb_image(path: Path) -> pyvips.Image:

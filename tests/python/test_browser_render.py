@@ -18,7 +18,7 @@ import pyvips
 
 from lanterna.tiler import iiif_geometry as geo
 from lanterna.tiler.dataset import DatasetWriter
-from lanterna.tiler.importers import add_ptm_layer
+from lanterna.tiler.layers import add_ptm_layer
 from lanterna.tiler.ptm_model import Ptm, ptm_weights
 
 from .browser import Shot, render

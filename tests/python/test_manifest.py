@@ -8,7 +8,7 @@ from pathlib import Path
 import pytest
 
 from lanterna.tiler.dataset import DatasetWriter
-from lanterna.tiler.importers import add_ptm_layer
+from lanterna.tiler.layers import add_ptm_layer
 
 from .conftest import random_ptm
 

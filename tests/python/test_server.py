@@ -10,7 +10,7 @@ from flask.testing import FlaskClient
 
 from lanterna.server.app import create_app
 from lanterna.tiler.dataset import DatasetWriter
-from lanterna.tiler.importers import add_ptm_layer
+from lanterna.tiler.layers import add_ptm_layer
 
 from .conftest import random_ptm
 

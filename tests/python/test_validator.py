@@ -12,7 +12,8 @@ from pathlib import Path
 import pytest
 
 from lanterna.tiler.dataset import DatasetWriter
-from lanterna.tiler.importers import add_image_layer, load_rgb_image
+from lanterna.tiler.importers import load_rgb_image
+from lanterna.tiler.layers import add_image_layer
 
 from .conftest import LiveServer, shared_file
 
