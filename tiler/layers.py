@@ -16,7 +16,8 @@ import pyvips
 from .dataset import DatasetWriter
 from .hsh_basis import hsh_weights
 from .hsh_model import Hsh
-from .ptm_model import PTM_BASIS, Ptm
+from .planes import PlaneLayer
+from .ptm_model import PTM_BASIS, Ptm, ptm_weights
 
 #: Default BRDF of a shape layer without material (docs/rendering.md, svbrdf).
 DEFAULT_KD, DEFAULT_KS, DEFAULT_ALPHA = 0.7, 0.15, 0.25
@@ -211,3 +212,34 @@ def add_image_layer(ds: DatasetWriter, image: pyvips.Image, *, layer_id: str = "
                                [1.0] * (1 if mono else 3), [0.0] * (1 if mono else 3))]}
     ds.add_layer(layer)
     return layer
+
+
+def add_planes_layer(ds: DatasetWriter, layer: PlaneLayer, *, layer_id: str,
+                     label: str) -> dict[str, Any]:
+    """Tile a format-neutral :class:`~lanterna.tiler.planes.PlaneLayer` (ptm or hsh) as a layer."""
+    planes = []
+    for i, g in enumerate(layer.groups):
+        svc = ds.add_image(f"{layer_id}_p{i}", np.ascontiguousarray(g.data), fmt="png")
+        planes.append(_plane(svc, "png", list(g.channels), list(g.scale), list(g.bias)))
+    ch = layer.channels()
+    if layer.layer_type == "ptm":
+        w = ptm_weights(0.0, 0.0)  # overhead light
+        if layer.colorspace == "lrgb":
+            lum = sum(ch[f"L{k}"] * w[k] for k in range(6))
+            preview = np.stack([ch[c] * lum for c in "RGB"], axis=-1)
+        else:
+            preview = np.stack([sum(ch[f"{c}{k}"] * w[k] for k in range(6)) for c in "RGB"], -1)
+        fields: dict[str, Any] = {"colorspace": layer.colorspace, "basis": list(PTM_BASIS)}
+    elif layer.layer_type == "hsh":
+        assert layer.terms is not None
+        hw = hsh_weights(0.0, 0.0, layer.terms)
+        preview = np.stack([sum(ch[f"{c}{k}"] * hw[k] for k in range(layer.terms)) for c in "RGB"],
+                           axis=-1)
+        fields = {"terms": layer.terms}
+    else:
+        raise ValueError(f"unsupported plane layer type {layer.layer_type!r}")
+    ds.add_image(f"{layer_id}_preview", _to_bytes(preview), fmt="jpg")
+    out = {"id": layer_id, "label": label, "body": f"{layer_id}_preview",
+           "layerType": layer.layer_type, **fields, "planes": planes}
+    ds.add_layer(out)
+    return out
