@@ -11,7 +11,11 @@ from lanterna.tiler.errors import LanternaInputError
 
 EXAMPLES = """examples:
   lanterna import ushabti.ptm -o datasets/ushabti     tile a PTM as a relightable IIIF dataset
-  lanterna import photo.jpg -o datasets/photo         a plain image layer
+  lanterna import vase.rti -o datasets/vase           an HSH .rti (4/9/16 terms)
+  lanterna import vis.ptm vis.rti uv.png -o datasets/obj   several co-registered layers
+  lanterna import object.json -o datasets/obj         a dataset description or a seed-paper scene
+  lanterna import --band IR=ir.tif --band R=r.tif --band G=g.tif --fusion IR,R,G -o datasets/ms
+                                                      multispectral bands + a false-colour layer
   lanterna serve datasets/                            serve every dataset on http://127.0.0.1:8000/
   lanterna demo                                       make the demo object and serve it
 """
@@ -37,9 +41,15 @@ def _parser() -> argparse.ArgumentParser:
         epilog=EXAMPLES, formatter_class=argparse.RawDescriptionHelpFormatter)
     sub = parser.add_subparsers(required=True, metavar="COMMAND")
 
-    imp = sub.add_parser("import", help="import a .ptm or an image as a dataset",
+    imp = sub.add_parser("import", help="import sources as the layers of one dataset",
                          epilog=EXAMPLES, formatter_class=argparse.RawDescriptionHelpFormatter)
-    imp.add_argument("source", type=Path, help="a .ptm file or an image")
+    imp.add_argument("sources", type=Path, nargs="*", metavar="SOURCE",
+                     help=".ptm, .rti, a Relight folder, an image, or a description .json; "
+                          "several sources become several layers (the first is the default)")
+    imp.add_argument("--band", action="append", default=[], metavar="NAME=FILE",
+                     help="a spectral band (single-band image) shown as a grey layer; repeatable")
+    imp.add_argument("--fusion", action="append", default=[], metavar="A,B,C",
+                     help="a false-colour layer from three bands mapped to R,G,B; repeatable")
     imp.add_argument("-o", "--output", type=Path, required=True, help="dataset folder to create")
     imp.add_argument("--name", help="dataset name in URLs (default: the output folder's name)")
     imp.add_argument("--label", help="human-readable label (default: the source's name)")
@@ -70,12 +80,22 @@ def _serve_args(p: argparse.ArgumentParser) -> None:
 
 
 def _cmd_import(args: argparse.Namespace) -> int:
-    from lanterna.tiler.importers import import_source
+    from lanterna.tiler.importers import import_sources
 
     if args.tile_size < 64 or args.tile_size > 4096:
         raise LanternaInputError(None, "--tile-size must be between 64 and 4096")
-    out = import_source(args.source, args.output, name=args.name, label=args.label,
-                        base_url=args.base_url, tile_size=args.tile_size, force=args.force)
+    bands: dict[str, Path] = {}
+    for item in args.band:
+        band, sep, file = item.partition("=")
+        if not sep or not band or not file:
+            raise LanternaInputError(None, f"--band wants NAME=FILE, got {item!r}")
+        bands[band] = Path(file)
+    fusions = [tuple(part.strip() for part in f.split(",")) for f in args.fusion]
+    if not args.sources and not bands:
+        raise LanternaInputError(None, "nothing to import: give a SOURCE or --band NAME=FILE")
+    out = import_sources(args.sources, args.output, name=args.name, label=args.label,
+                         bands=bands, fusions=fusions, base_url=args.base_url,
+                         tile_size=args.tile_size, force=args.force)
     print(f"wrote {out}")
     return 0
 

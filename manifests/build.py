@@ -31,6 +31,8 @@ def build_manifest(desc: dict[str, Any]) -> dict[str, Any]:
     ds_url = f"{desc['baseUrl']}/{desc['name']}"
     width, height = desc["width"], desc["height"]
     manifest = Manifest(id=f"{ds_url}/manifest.json", label=desc["label"])
+    if desc.get("summary"):
+        manifest.summary = {"en": [desc["summary"]]}
     canvas = manifest.make_canvas(id=f"{ds_url}/canvas/1", width=width, height=height,
                                   label=desc["label"])
     bodies = []

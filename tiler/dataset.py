@@ -27,6 +27,8 @@ DEFAULT_BASE_URL = "http://127.0.0.1:8000/datasets"
 RELIGHT_TYPE = "LanternaRelight"
 RELIGHT_PROFILE = "urn:lanterna:relight:1"
 FORMAT_VERSION = 1
+#: Layer keys kept in lanterna.json but not in the relight service block.
+_NOT_IN_SERVICE = ("id", "label", "body", "overlay")
 _ID = re.compile(r"^[A-Za-z0-9_-]+$")
 
 
@@ -49,7 +51,8 @@ class DatasetWriter:
 
     def __init__(self, out: Path, *, name: str, label: str, width: int, height: int,
                  base_url: str = DEFAULT_BASE_URL, tile_size: int = 256,
-                 source: str | None = None, force: bool = False) -> None:
+                 source: str | None = None, force: bool = False,
+                 summary: str | None = None) -> None:
         self.out = Path(out)
         self.name = check_identifier(name, "dataset name")
         self.label = label
@@ -57,6 +60,7 @@ class DatasetWriter:
         self.base_url = base_url.rstrip("/")
         self.tile_size = tile_size
         self.source = source
+        self.summary = summary
         self.force = force
         self.images: dict[str, dict[str, Any]] = {}
         self.layers: list[dict[str, Any]] = []
@@ -120,6 +124,8 @@ class DatasetWriter:
     def add_layer(self, layer: dict[str, Any]) -> None:
         """Add a layer: ``{"id", "label", "layerType", "body": image id, ...relight fields}``."""
         check_identifier(layer["id"], "layer id")
+        if any(other["id"] == layer["id"] for other in self.layers):
+            raise ValueError(f"layer id {layer['id']!r} added twice")
         if layer["body"] not in self.images:
             raise ValueError(f"layer body image {layer['body']!r} was not added")
         self.layers.append(layer)
@@ -128,7 +134,7 @@ class DatasetWriter:
         """Return the relight service block of ``layer`` (see docs/dataset-format.md)."""
         block = {"id": f"{self.dataset_url}/layers/{layer['id']}.json", "type": RELIGHT_TYPE,
                  "profile": RELIGHT_PROFILE, "width": self.width, "height": self.height}
-        block.update({k: v for k, v in layer.items() if k not in ("id", "label", "body")})
+        block.update({k: v for k, v in layer.items() if k not in _NOT_IN_SERVICE})
         return block
 
     def description(self) -> dict[str, Any]:
@@ -141,10 +147,12 @@ class DatasetWriter:
             "height": self.height,
             "baseUrl": self.base_url,
             "source": self.source,
+            **({"summary": self.summary} if self.summary else {}),
             "images": self.images,
             "layers": [
                 {"id": layer["id"], "label": layer["label"], "body": layer["body"],
-                 "service": self.layer_service(layer)}
+                 "service": self.layer_service(layer),
+                 **({"overlay": layer["overlay"]} if "overlay" in layer else {})}
                 for layer in self.layers
             ],
         }

@@ -1,16 +1,15 @@
-"""Turn source files (a .ptm, a plain image) into datasets."""
+"""Turn sources (files, folders, description files, spectral bands) into one dataset."""
 
 from __future__ import annotations
 
+from collections.abc import Sequence
 from pathlib import Path
 
 import pyvips
 
-from .dataset import DEFAULT_BASE_URL, DatasetWriter, check_identifier
+from .dataset import DEFAULT_BASE_URL, check_identifier
 from .errors import LanternaInputError
-from .layers import add_image_layer, add_ptm_layer
-
-IMAGE_SUFFIXES = {".png", ".jpg", ".jpeg", ".tif", ".tiff", ".webp"}
+from .plans import LayerPlan, build_dataset, plan_bands, plan_source
 
 
 def load_rgb_image(path: Path) -> pyvips.Image:
@@ -30,36 +29,45 @@ def load_rgb_image(path: Path) -> pyvips.Image:
     return img.copy(interpretation="srgb")
 
 
-def import_source(source: Path, out: Path, *, name: str | None = None, label: str | None = None,
-                  base_url: str = DEFAULT_BASE_URL, tile_size: int = 256,
-                  force: bool = False) -> Path:
-    """Import one source file (``.ptm`` or an image) as the dataset ``out``; return ``out``."""
-    from .ptm import read_ptm
+def import_sources(sources: Sequence[Path], out: Path, *, name: str | None = None,
+                   label: str | None = None, bands: dict[str, Path] | None = None,
+                   fusions: Sequence[Sequence[str]] = (), base_url: str = DEFAULT_BASE_URL,
+                   tile_size: int = 256, force: bool = False) -> Path:
+    """Import sources as the layers of dataset ``out`` (in order; the first is the default).
 
-    source = Path(source)
-    if not source.is_file():
-        raise LanternaInputError(source, "no such file")
-    name = check_identifier(name or _safe_name(out.name), "dataset name")
-    label = label or source.stem
-    suffix = source.suffix.lower()
-    if suffix == ".ptm":
-        ptm = read_ptm(source)
-        with DatasetWriter(out, name=name, label=label, width=ptm.width, height=ptm.height,
-                           base_url=base_url, tile_size=tile_size, source=source.name,
-                           force=force) as ds:
-            add_ptm_layer(ds, ptm, label=f"{label} (PTM {ptm.colorspace.upper()})")
-    elif suffix in IMAGE_SUFFIXES:
-        img = load_rgb_image(source)
-        with DatasetWriter(out, name=name, label=label, width=img.width, height=img.height,
-                           base_url=base_url, tile_size=tile_size, source=source.name,
-                           force=force) as ds:
-            add_image_layer(ds, img, label=label)
-    else:
-        raise LanternaInputError(source, f"unknown source type {suffix or '(no suffix)'}; "
-                                 "expected .ptm or an image (.png, .jpg, .tif, .webp)")
-    return out
+    A source is a ``.ptm``, ``.rti``, a Relight web-format folder, an image, or a dataset
+    description ``.json`` (Lanterna's or the seed paper's scene format). ``bands`` adds one grey
+    layer per spectral band, ``fusions`` one false-colour layer per band triple.
+    """
+    from .description import plan_description
+
+    plans: list[LayerPlan] = []
+    fields: dict[str, str] = {}
+    for source in sources:
+        source = Path(source)
+        if source.suffix.lower() == ".json" and source.is_file():
+            desc_fields, desc_plans = plan_description(source)
+            fields = {**desc_fields, **fields}
+            plans.extend(desc_plans)
+        else:
+            plans.append(plan_source(source))
+    if bands:
+        plans.extend(plan_bands(bands, fusions))
+    elif fusions:
+        raise LanternaInputError(None, "--fusion needs spectral bands (--band NAME=FILE)")
+    first = Path(sources[0]) if sources else Path(out)
+    ds_name = check_identifier(name or fields.get("name") or _safe_name(Path(out).name),
+                               "dataset name")
+    ds_label = label or fields.get("label") or first.stem
+    return build_dataset(plans, out, name=ds_name, label=ds_label, base_url=base_url,
+                         tile_size=tile_size, force=force, summary=fields.get("summary"))
+
+
+def import_source(source: Path, out: Path, **kwargs: object) -> Path:
+    """Import one source as dataset ``out`` (see :func:`import_sources`)."""
+    return import_sources([source], out, **kwargs)  # type: ignore[arg-type]
 
 
 def _safe_name(stem: str) -> str:
-    cleaned = "".join(ch if ch.isalnum() or ch == "_" else "_" for ch in stem)
+    cleaned = "".join(ch if ch.isalnum() or ch in "_-" else "_" for ch in stem)
     return cleaned or "dataset"

@@ -42,13 +42,15 @@ def test_import_real_ushabti_stores_the_ptm_bytes(tmp_path: Path) -> None:
         ["L0", "L1", "L2"], ["L3", "L4", "L5"], ["R", "G", "B"]]
     assert layer["planes"][0]["scale"] == [2.0, 2.0, 2.0]
     assert layer["planes"][0]["bias"][0] == pytest.approx(160 / 255)
+    assert desc["layers"][0]["id"] == "ushabti"  # named after the file
+    c1, color_id = (p["service"]["id"].rsplit("/", 1)[1] for p in layer["planes"][1:])
     ptm = read_ptm(src)
     tile = pyvips.Image.new_from_file(
-        str(tmp_path / "ushabti/iiif/ptm_c1/256,768,256,256/256,256/0/default.png")).numpy()
+        str(tmp_path / f"ushabti/iiif/{c1}/256,768,256,256/256,256/0/default.png")).numpy()
     np.testing.assert_array_equal(tile, ptm.coefficients[768:1024, 256:512, 3:6])
     assert ptm.rgb is not None
     color = pyvips.Image.new_from_file(
-        str(tmp_path / "ushabti/iiif/ptm_color/0,0,256,256/256,256/0/default.png")).numpy()
+        str(tmp_path / f"ushabti/iiif/{color_id}/0,0,256,256/256,256/0/default.png")).numpy()
     np.testing.assert_array_equal(color, ptm.rgb[:256, :256])
 
 

@@ -1,0 +1,191 @@
+"""Layer plans: sources read and checked first, a dataset written only once all of them are good.
+
+A :class:`LayerPlan` holds one layer's decoded data (so sizes can be checked across layers before
+anything is written) and a closure that adds it to a :class:`~lanterna.tiler.dataset.DatasetWriter`.
+:func:`build_dataset` checks that every layer has the canvas size and writes them in order.
+"""
+
+from __future__ import annotations
+
+import re
+from collections.abc import Callable, Sequence
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+import numpy.typing as npt
+
+from .dataset import DEFAULT_BASE_URL, DatasetWriter, check_identifier
+from .errors import LanternaInputError
+from .layers import (
+    add_hsh_layer,
+    add_image_layer,
+    add_planes_layer,
+    add_ptm_layer,
+    add_svbrdf_layer,
+)
+from .pyramid import vips_from_array
+
+IMAGE_SUFFIXES = {".png", ".jpg", ".jpeg", ".tif", ".tiff", ".webp"}
+SVBRDF_MAPS = ("normals", "kd", "ks", "gloss", "depth")
+
+
+@dataclass
+class LayerPlan:
+    """One layer ready to be written: its id, size, source name and how to add it."""
+
+    id: str
+    label: str
+    width: int
+    height: int
+    source: str
+    add: Callable[[DatasetWriter], object]
+
+
+def layer_id_from(stem: str) -> str:
+    """Turn a file name stem into a layer id (``[A-Za-z0-9_-]``)."""
+    cleaned = re.sub(r"[^A-Za-z0-9_-]+", "_", stem).strip("_")
+    return cleaned or "layer"
+
+
+def plan_source(path: Path, *, layer_id: str | None = None, label: str | None = None) -> LayerPlan:
+    """Plan a layer from one source: ``.ptm``, ``.rti``, a Relight folder or an image."""
+    path = Path(path)
+    lid = check_identifier(layer_id or layer_id_from(path.stem), "layer id")
+    if path.is_dir():
+        if not (path / "info.json").is_file():
+            raise LanternaInputError(path, "a folder source must be a Relight web-format folder "
+                                     "(info.json + plane_k.jpg)")
+        from .relight_web import read_relight
+
+        planes = read_relight(path)
+        kind = f"{planes.layer_type.upper()} {(planes.colorspace or '').upper()}".strip()
+        lbl = label or f"{path.name} ({kind}, Relight)"
+        return LayerPlan(lid, lbl, planes.width, planes.height, path.name,
+                         lambda ds: add_planes_layer(ds, planes, layer_id=lid, label=lbl))
+    if not path.is_file():
+        raise LanternaInputError(path, "no such file")
+    suffix = path.suffix.lower()
+    if suffix == ".ptm":
+        from .ptm import read_ptm
+
+        ptm = read_ptm(path)
+        lbl = label or f"{path.stem} (PTM {ptm.colorspace.upper()})"
+        return LayerPlan(lid, lbl, ptm.width, ptm.height, path.name,
+                         lambda ds: add_ptm_layer(ds, ptm, layer_id=lid, label=lbl))
+    if suffix == ".rti":
+        from .hsh import read_rti
+
+        hsh = read_rti(path)
+        lbl = label or f"{path.stem} (HSH {hsh.terms} terms)"
+        return LayerPlan(lid, lbl, hsh.width, hsh.height, path.name,
+                         lambda ds: add_hsh_layer(ds, hsh, layer_id=lid, label=lbl))
+    if suffix in IMAGE_SUFFIXES:
+        from .importers import load_rgb_image
+
+        img = load_rgb_image(path)
+        lbl = label or path.stem
+        return LayerPlan(lid, lbl, img.width, img.height, path.name,
+                         lambda ds: add_image_layer(ds, img, layer_id=lid, label=lbl,
+                                                    share_key=str(path.resolve())))
+    raise LanternaInputError(path, f"unknown source type {suffix or '(no suffix)'}; expected "
+                             ".ptm, .rti, a Relight folder or an image (.png, .jpg, .tif, .webp)")
+
+
+def plan_svbrdf(maps: dict[str, Path], *, layer_id: str, label: str | None = None,
+                gloss_limits: tuple[float, float] = (0.01, 0.5), input_colorspace: str = "linear",
+                normal_convention: str = "opengl") -> LayerPlan:
+    """Plan a shape + material layer from map files (any subset of :data:`SVBRDF_MAPS`)."""
+    from .maps import load_color_map, load_normal_map, load_scalar_map
+
+    unknown = sorted(set(maps) - set(SVBRDF_MAPS))
+    if unknown:
+        raise LanternaInputError(None, f"layer {layer_id}: unknown map(s) {', '.join(unknown)}; "
+                                 f"expected {', '.join(SVBRDF_MAPS)}")
+    if not maps:
+        raise LanternaInputError(None, f"layer {layer_id}: a shape + material layer needs a map")
+    data: dict[str, npt.NDArray[np.uint8]] = {}
+    for name, path in maps.items():
+        if name == "normals":
+            data[name] = load_normal_map(path, convention=normal_convention)
+        elif name in ("kd", "ks"):
+            data[name] = load_color_map(path)
+        else:
+            data[name] = load_scalar_map(path)
+    sizes = {name: (int(a.shape[1]), int(a.shape[0])) for name, a in data.items()}
+    first = next(iter(maps))
+    for name, size in sizes.items():
+        if size != sizes[first]:
+            raise LanternaInputError(maps[name], f"map {name} is {size[0]}x{size[1]}, map {first} "
+                                     f"is {sizes[first][0]}x{sizes[first][1]}")
+    share = {name: str(Path(p).resolve()) for name, p in maps.items()}
+    kind = "shape + material" if "normals" in data and "kd" in data else (
+        "shape" if "normals" in data else "material")
+    lbl = label or f"{layer_id} ({kind})"
+    w, h = sizes[first]
+
+    def add(ds: DatasetWriter) -> object:
+        return add_svbrdf_layer(ds, normals=data.get("normals"), kd=data.get("kd"),
+                                ks=data.get("ks"), gloss=data.get("gloss"),
+                                depth=data.get("depth"), gloss_limits=gloss_limits,
+                                input_colorspace=input_colorspace, share=share,
+                                layer_id=layer_id, label=lbl)
+
+    return LayerPlan(layer_id, lbl, w, h, ", ".join(str(p) for p in maps.values()), add)
+
+
+def plan_bands(bands: dict[str, Path], fusions: Sequence[Sequence[str]] = ()) -> list[LayerPlan]:
+    """Plan one grey layer per spectral band and one false-colour layer per band→RGB triple."""
+    from .maps import load_band
+
+    loaded = {name: load_band(path) for name, path in bands.items()}
+    plans = []
+    shapes = {name: a.shape for name, a in loaded.items()}
+    for name, array in loaded.items():
+        lid = check_identifier(layer_id_from(name), "band name")
+        if array.shape != next(iter(shapes.values())):
+            raise LanternaInputError(bands[name], f"band {name} is {array.shape[1]}x"
+                                     f"{array.shape[0]}, other bands differ")
+        plans.append(_array_plan(lid, f"{name} band", array, str(bands[name])))
+    for triple in fusions:
+        if len(triple) != 3:
+            raise LanternaInputError(None, f"a false-colour fusion maps three bands to R,G,B: "
+                                     f"got {','.join(triple)}")
+        missing = [b for b in triple if b not in loaded]
+        if missing:
+            raise LanternaInputError(None, f"fusion {','.join(triple)}: unknown band(s) "
+                                     f"{', '.join(missing)} (have {', '.join(loaded)})")
+        rgb = np.stack([loaded[b] for b in triple], axis=-1)
+        lid = check_identifier(layer_id_from("fc_" + "_".join(triple)), "layer id")
+        plans.append(_array_plan(lid, f"False colour R={triple[0]} G={triple[1]} B={triple[2]}",
+                                 rgb, "+".join(triple)))
+    return plans
+
+
+def _array_plan(lid: str, label: str, array: npt.NDArray[np.uint8], source: str) -> LayerPlan:
+    img = vips_from_array(array)
+    return LayerPlan(lid, label, img.width, img.height, source,
+                     lambda ds: add_image_layer(ds, img, layer_id=lid, label=label, fmt="png"))
+
+
+def build_dataset(plans: Sequence[LayerPlan], out: Path, *, name: str, label: str,
+                  base_url: str = DEFAULT_BASE_URL, tile_size: int = 256, force: bool = False,
+                  summary: str | None = None) -> Path:
+    """Write the planned layers (same size, unique ids) as one dataset at ``out``."""
+    if not plans:
+        raise LanternaInputError(None, "nothing to import: give at least one source")
+    w, h = plans[0].width, plans[0].height
+    seen: set[str] = set()
+    for plan in plans:
+        if (plan.width, plan.height) != (w, h):
+            raise LanternaInputError(plan.source, f"is {plan.width}x{plan.height}, but "
+                                     f"{plans[0].source} is {w}x{h}: layers must be co-registered")
+        if plan.id in seen:
+            raise LanternaInputError(plan.source, f"layer id {plan.id!r} is used twice")
+        seen.add(plan.id)
+    with DatasetWriter(out, name=name, label=label, width=w, height=h, base_url=base_url,
+                       tile_size=tile_size, source=", ".join(p.source for p in plans),
+                       force=force, summary=summary) as ds:
+        for plan in plans:
+            plan.add(ds)
+    return Path(out)
