@@ -1,0 +1,224 @@
+"""Multi-layer datasets: several sources, description files, the seed paper's scenes, bands."""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+
+import numpy as np
+import pytest
+import pyvips
+from flask.testing import FlaskClient
+
+from lanterna.cli import main
+from lanterna.server.app import create_app
+from lanterna.tiler.ptm_write import write_ptm
+
+from .conftest import random_ptm
+
+W, H = 96, 64
+
+
+def _png(path: Path, array: np.ndarray) -> Path:
+    pyvips.Image.new_from_array(np.ascontiguousarray(array)).pngsave(str(path))
+    return path
+
+
+def _rng_image(seed: int, channels: int = 3) -> np.ndarray:
+    shape = (H, W, channels) if channels > 1 else (H, W)
+    return np.random.default_rng(seed).integers(0, 256, shape, dtype=np.uint8)
+
+
+def _normal_map(seed: int) -> np.ndarray:
+    rng = np.random.default_rng(seed)
+    n = rng.normal(0, 0.3, (H, W, 3))
+    n[..., 2] = 1.0
+    n /= np.linalg.norm(n, axis=-1, keepdims=True)
+    return np.rint((n + 1) / 2 * 255).astype(np.uint8)
+
+
+def _desc(out: Path) -> dict:
+    return json.loads((out / "lanterna.json").read_text())
+
+
+def _manifest_items(out: Path) -> list[dict]:
+    m = json.loads((out / "manifest.json").read_text())
+    body = m["items"][0]["items"][0]["items"][0]["body"]
+    assert body["type"] == "Choice"
+    return list(body["items"])
+
+
+def test_several_sources_become_layers_in_order(tmp_path: Path) -> None:
+    write_ptm(tmp_path / "vis.ptm", random_ptm(W, H), "PTM_FORMAT_LRGB")
+    _png(tmp_path / "uv.png", _rng_image(1))
+    out = tmp_path / "out" / "obj"
+    sources = [str(tmp_path / "vis.ptm"), str(tmp_path / "uv.png")]
+    assert main(["import", *sources, "-o", str(out)]) == 0
+    desc = _desc(out)
+    assert [layer["id"] for layer in desc["layers"]] == ["vis", "uv"]
+    assert [layer["service"]["layerType"] for layer in desc["layers"]] == ["ptm", "image"]
+    items = _manifest_items(out)
+    assert [i["label"]["en"][0] for i in items] == [layer["label"] for layer in desc["layers"]]
+    assert items[0]["service"][1]["layerType"] == "ptm"  # the first item is the default layer
+
+
+def test_layers_must_be_co_registered(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    write_ptm(tmp_path / "vis.ptm", random_ptm(W, H), "PTM_FORMAT_LRGB")
+    _png(tmp_path / "small.png", np.zeros((H, W - 1, 3), np.uint8))
+    out = tmp_path / "out"
+    assert main(["import", str(tmp_path / "vis.ptm"), str(tmp_path / "small.png"), "-o",
+                 str(out / "x")]) == 2
+    err = capsys.readouterr().err
+    assert "small.png: is 95x64, but vis.ptm is 96x64" in err
+    assert not out.exists() or list(out.iterdir()) == []
+
+
+def _five_materials(tmp_path: Path) -> Path:
+    _png(tmp_path / "N.png", _normal_map(0))
+    layers = []
+    for i in range(5):
+        _png(tmp_path / f"kd{i}.png", _rng_image(10 + i))
+        layers.append({"id": f"mat{i}", "type": "svbrdf",
+                       "maps": {"normals": "N.png", "kd": f"kd{i}.png"}})
+    desc = tmp_path / "object.json"
+    desc.write_text(json.dumps({"name": "five", "label": "Five materials", "layers": layers}))
+    return desc
+
+
+def test_shared_normal_map_is_stored_and_served_once(tmp_path: Path) -> None:
+    out = tmp_path / "root" / "five"
+    assert main(["import", str(_five_materials(tmp_path)), "-o", str(out)]) == 0
+    desc = _desc(out)
+    normal_ids = {p["service"]["id"] for layer in desc["layers"]
+                  for p in layer["service"]["planes"] if p["channels"][0] == "NX"}
+    assert len(desc["layers"]) == 5 and len(normal_ids) == 1
+    stored = sorted(p.name for p in (out / "iiif").iterdir())
+    assert sum("normals" in s for s in stored) == 1
+    assert sum("kd" in s for s in stored) == 5
+    client: FlaskClient = create_app({"DATA_ROOT": out.parent}).test_client()
+    ident = normal_ids.pop().rsplit("/", 1)[1]
+    info = client.get(f"/datasets/five/iiif/{ident}/info.json").get_json()
+    assert info["id"] == f"http://localhost/datasets/five/iiif/{ident}"
+    with client.get(f"/datasets/five/iiif/{ident}/full/max/0/default.png") as resp:
+        tile = pyvips.Image.new_from_buffer(resp.data, "").numpy()
+    np.testing.assert_array_equal(tile, _normal_map(0))
+
+
+def test_bands_and_false_colour_fusion(tmp_path: Path) -> None:
+    bands = {name: _png(tmp_path / f"{name}.png", _rng_image(20 + i, 1))
+             for i, name in enumerate(("IR", "R", "G"))}
+    out = tmp_path / "ms"
+    args = ["import", "-o", str(out), "--fusion", "IR,R,G"]
+    for name, path in bands.items():
+        args += ["--band", f"{name}={path}"]
+    assert main(args) == 0
+    desc = _desc(out)
+    assert [layer["id"] for layer in desc["layers"]] == ["IR", "R", "G", "fc_IR_R_G"]
+    assert desc["layers"][0]["service"]["planes"][0]["channels"] == ["Y"]
+    fused = pyvips.Image.new_from_file(
+        str(out / "iiif/fc_IR_R_G/0,0,96,64/96,64/0/default.png")).numpy()
+    expected = np.stack([_rng_image(20, 1), _rng_image(21, 1), _rng_image(22, 1)], axis=-1)
+    np.testing.assert_array_equal(fused, expected)
+
+
+def test_fusion_of_unknown_band_is_an_error(tmp_path: Path,
+                                            capsys: pytest.CaptureFixture[str]) -> None:
+    _png(tmp_path / "ir.png", _rng_image(1, 1))
+    assert main(["import", "-o", str(tmp_path / "x"), "--band", f"IR={tmp_path / 'ir.png'}",
+                 "--fusion", "IR,R,G"]) == 2
+    assert "unknown band(s) R, G" in capsys.readouterr().err
+    assert not (tmp_path / "x").exists()
+
+
+def _seed_scene(tmp_path: Path, shader_type: str = "LRGB_PTM") -> Path:
+    (tmp_path / "vis").mkdir()
+    (tmp_path / "shared").mkdir()
+    for k in range(3):  # templates L1.png, L2.png, L3.png → level-00 files L100.png …
+        _png(tmp_path / f"L{k + 1}00.png", _rng_image(30 + k))
+    _png(tmp_path / "vis/kdMap00.png", _rng_image(40))
+    _png(tmp_path / "vis/ksMap00.png", _rng_image(41))
+    _png(tmp_path / "vis/glossMap00.png", _rng_image(42, 1))
+    _png(tmp_path / "shared/N00.png", _normal_map(3))
+    scene = {
+        "name": "Sample dataset", "info": "<h1>Sample</h1>", "width": W, "height": H,
+        "layers": [
+            {"id": "VIS", "name": "Visible",
+             "obj": {"shader": {"type": shader_type, "scale": [2, 2, 2, 2, 2, 2],
+                                "bias": [164, 166, 101, 87, 78, 0]},
+                     "maps": {"coeff_0_1_2": "L1.png", "coeff_3_4_5": "L2.png",
+                              "coeff_6_7_8": "L3.png"}},
+             "overlay": {"img": "vis/overlay.png", "range": [0, 3],
+                         "shortInfo": ["a", "b", "c", "d"], "longInfo": ["A", "B", "C", "D"]}},
+            {"id": "UV1", "name": "UV (385nm) + Fluorescence",
+             "obj": {"shader": {"type": "SVBRDF", "glossLimits": [0.01, 0.5],
+                                "inputColorSpace": "linear"},
+                     "maps": {"kd": "vis/kdMap.png", "ks": "vis/ksMap.png",
+                              "gloss": "vis/glossMap.png", "N": "shared/N.png"}}},
+            {"id": "N", "name": "Shape", "obj": {"shader": {"type": "SVBRDF"},
+                                                  "maps": {"N": "shared/N.png"}}},
+        ],
+    }
+    path = tmp_path / "scene.json"
+    path.write_text(json.dumps(scene))
+    return path
+
+
+def test_seed_paper_scene_is_imported(tmp_path: Path) -> None:
+    out = tmp_path / "scene"
+    assert main(["import", str(_seed_scene(tmp_path)), "-o", str(out)]) == 0
+    desc = _desc(out)
+    assert desc["label"] == "Sample dataset" and desc["summary"] == "<h1>Sample</h1>"
+    vis, uv, shape = desc["layers"]
+    assert (vis["id"], vis["label"]) == ("VIS", "Visible")
+    assert vis["overlay"]["range"] == [0, 3]  # kept for the annotation viewer
+    ptm = vis["service"]
+    assert ptm["layerType"] == "ptm" and ptm["colorspace"] == "lrgb"
+    assert ptm["planes"][1]["bias"] == pytest.approx([87 / 255, 78 / 255, 0.0])
+    assert ptm["planes"][0]["scale"] == [2.0, 2.0, 2.0]
+    first = ptm["planes"][0]["service"]["id"].rsplit("/", 1)[1]
+    stored = pyvips.Image.new_from_file(str(out / f"iiif/{first}/0,0,96,64/96,64/0/default.png"))
+    np.testing.assert_array_equal(stored.numpy(), _rng_image(30))  # the file's own bytes
+    assert uv["service"]["layerType"] == "svbrdf"
+    assert uv["service"]["glossLimits"] == [0.01, 0.5]
+    assert [p["channels"][0] for p in uv["service"]["planes"]] == ["NX", "KD_R", "KS_R", "GLOSS"]
+    n_uv = uv["service"]["planes"][0]["service"]["id"]
+    assert shape["service"]["planes"][0]["service"]["id"] == n_uv  # shared by URI matching
+
+
+def test_scene_with_unknown_shader_type_is_refused(tmp_path: Path,
+                                                   capsys: pytest.CaptureFixture[str]) -> None:
+    path = _seed_scene(tmp_path, shader_type="BRDF_MAGIC")
+    assert main(["import", str(path), "-o", str(tmp_path / "out" / "s")]) == 2
+    err = capsys.readouterr().err.strip()
+    assert err.endswith("layer VIS: unknown shader type 'BRDF_MAGIC' (expected LRGB_PTM or SVBRDF)")
+    assert len(err.splitlines()) == 1
+    assert not (tmp_path / "out").exists()
+
+
+def test_maps_of_different_sizes_are_refused(tmp_path: Path,
+                                             capsys: pytest.CaptureFixture[str]) -> None:
+    _png(tmp_path / "N.png", _normal_map(0))
+    _png(tmp_path / "kd.png", np.zeros((H + 2, W, 3), np.uint8))
+    desc = tmp_path / "d.json"
+    desc.write_text(json.dumps({"layers": [{"id": "m", "type": "svbrdf",
+                                            "maps": {"normals": "N.png", "kd": "kd.png"}}]}))
+    assert main(["import", str(desc), "-o", str(tmp_path / "out" / "m")]) == 2
+    err = capsys.readouterr().err
+    assert "kd.png: map kd is 96x66, map normals is 96x64" in err
+    assert not (tmp_path / "out").exists()
+
+
+@pytest.mark.parametrize(("layers", "problem"), [
+    ([], 'needs a non-empty "layers" list'),
+    ([{"id": "x", "type": "volumetric", "source": "a.ptm"}], "unknown layer type 'volumetric'"),
+    ([{"id": "x", "type": "svbrdf", "maps": {"normals": "N.png", "albedo": "a.png"}}],
+     "unknown map(s) albedo"),
+    ([{"id": "x", "source": "missing.ptm"}], "missing.ptm: no such file"),
+])
+def test_bad_descriptions(tmp_path: Path, capsys: pytest.CaptureFixture[str], layers: list,
+                          problem: str) -> None:
+    desc = tmp_path / "d.json"
+    desc.write_text(json.dumps({"layers": layers}))
+    assert main(["import", str(desc), "-o", str(tmp_path / "out" / "d")]) == 2
+    assert problem in capsys.readouterr().err
+    assert not (tmp_path / "out").exists()
