@@ -28,6 +28,9 @@ NORMAL_CONVENTIONS = ("opengl", "directx")
 _DTYPES = {"uchar": np.uint8, "ushort": np.uint16, "float": np.float32, "double": np.float64}
 #: A decoded normal counts as plausible when its length is within this range.
 _UNIT_RANGE = (0.6, 1.4)
+#: 8-bit pixels this close to unit length are kept byte for byte (√3/255 ≈ 0.0068 is the
+#: largest length error 8-bit rounding can cause), so re-encoding never drifts a valid map.
+_KEEP_8BIT = 0.01
 #: Shorter decoded vectors carry no direction (8-bit grey 128 is 0.0068 long); they become flat.
 _SHORT = 0.05
 
@@ -85,9 +88,10 @@ def load_normal_map(path: str | Path, *, convention: str = "opengl") -> npt.NDAr
 
     Each pixel decodes as ``n = 2·v − 1`` (``v`` in 0–1, from 8 or 16 bits), the green channel
     is negated for ``convention="directx"``, and ``n`` is re-normalised before encoding
-    ``round((n/‖n‖ + 1)/2·255)``. Pixels that are 0 in every channel are taken as masked
-    background: they are excluded from the checks and stay 0. Vectors shorter than 0.05 (grey
-    pixels, no direction) become ``(0, 0, 1)``.
+    ``round((n/‖n‖ + 1)/2·255)``; 8-bit pixels already unit length to within 8-bit rounding
+    (±0.01) keep their bytes (green flipped for DirectX). Pixels that are 0 in every channel
+    are taken as masked background: they are excluded from the checks and stay 0. Vectors
+    shorter than 0.05 (grey pixels, no direction) become ``(0, 0, 1)``.
 
     Raises
     ------
@@ -122,6 +126,12 @@ def load_normal_map(path: str | Path, *, convention: str = "opengl") -> npt.NDAr
         raise LanternaInputError(path, "the blue (z) channel is below 0.5 on average; not a "
                                  "normal map (z must point toward the viewer)")
     out = _to_bytes((unit + 1.0) * 0.5)
+    if raw.dtype == np.uint8:
+        keep = np.abs(length - 1.0) <= _KEEP_8BIT
+        same = np.array(raw, dtype=np.uint8)
+        if convention == "directx":
+            same[..., 1] = 255 - same[..., 1]
+        out[keep] = same[keep]
     out[masked] = 0
     return out
 
