@@ -128,6 +128,7 @@ def add_svbrdf_layer(
     ks: npt.NDArray[np.uint8] | None = None,
     gloss: npt.NDArray[np.uint8] | None = None,
     depth: npt.NDArray[np.uint8] | None = None,
+    depth_range: tuple[float, float] = (0.0, 1.0),
     gloss_limits: tuple[float, float] = (0.01, 0.5),
     input_colorspace: str = "linear",
     share: dict[str, str] | None = None,
@@ -144,7 +145,8 @@ def add_svbrdf_layer(
     kd, ks:
         ``(H, W, 3)`` uint8 in ``input_colorspace`` (``"linear"`` or ``"srgb"``).
     gloss, depth:
-        ``(H, W)`` uint8; gloss maps to ``α = αmin + t·(αmax − αmin)`` with ``gloss_limits``.
+        ``(H, W)`` uint8; gloss maps to ``α = αmin + t·(αmax − αmin)`` with ``gloss_limits``;
+        depth to ``low + t·(high − low)`` with ``depth_range = (low, high)`` (the source's units).
     share:
         Optional map name → share key (e.g. the normal map's resolved path): maps with the same key
         across layers are stored once.
@@ -159,7 +161,7 @@ def add_svbrdf_layer(
         ("kd", kd, ["KD_R", "KD_G", "KD_B"], [1.0] * 3, [0.0] * 3),
         ("ks", ks, ["KS_R", "KS_G", "KS_B"], [1.0] * 3, [0.0] * 3),
         ("gloss", gloss, ["GLOSS"], [1.0], [0.0]),
-        ("depth", depth, ["DEPTH"], [1.0], [0.0]),
+        ("depth", depth, ["DEPTH"], *_range_quantisation(depth_range)),
     ]
     planes = []
     for name, data, channels, sc, bi in maps:
@@ -180,6 +182,13 @@ def add_svbrdf_layer(
              "glossLimits": [lo, hi], "inputColorSpace": input_colorspace, "planes": planes}
     ds.add_layer(layer)
     return layer
+
+
+def _range_quantisation(value_range: tuple[float, float]) -> tuple[list[float], list[float]]:
+    """``(scale, bias)`` so that ``(t − bias)·scale`` spans ``value_range`` for t in 0–1."""
+    low, high = (float(v) for v in value_range)
+    span = high - low
+    return ([span], [-low / span]) if span != 0 else ([low], [0.0])
 
 
 def _svbrdf_preview(normals: npt.NDArray[np.uint8] | None, kd: npt.NDArray[np.uint8] | None,

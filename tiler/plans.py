@@ -96,7 +96,7 @@ def plan_svbrdf(maps: dict[str, Path], *, layer_id: str, label: str | None = Non
                 gloss_limits: tuple[float, float] = (0.01, 0.5), input_colorspace: str = "linear",
                 normal_convention: str = "opengl") -> LayerPlan:
     """Plan a shape + material layer from map files (any subset of :data:`SVBRDF_MAPS`)."""
-    from .maps import load_color_map, load_normal_map, load_scalar_map
+    from .maps import load_color_map, load_depth_map, load_normal_map, load_scalar_map
 
     unknown = sorted(set(maps) - set(SVBRDF_MAPS))
     if unknown:
@@ -105,11 +105,14 @@ def plan_svbrdf(maps: dict[str, Path], *, layer_id: str, label: str | None = Non
     if not maps:
         raise LanternaInputError(None, f"layer {layer_id}: a shape + material layer needs a map")
     data: dict[str, npt.NDArray[np.uint8]] = {}
+    depth_range = (0.0, 1.0)
     for name, path in maps.items():
         if name == "normals":
             data[name] = load_normal_map(path, convention=normal_convention)
         elif name in ("kd", "ks"):
             data[name] = load_color_map(path)
+        elif name == "depth":
+            data[name], depth_range = load_depth_map(path)  # stretched to 0–255 over min..max
         else:
             data[name] = load_scalar_map(path)
     sizes = {name: (int(a.shape[1]), int(a.shape[0])) for name, a in data.items()}
@@ -127,7 +130,8 @@ def plan_svbrdf(maps: dict[str, Path], *, layer_id: str, label: str | None = Non
     def add(ds: DatasetWriter) -> object:
         return add_svbrdf_layer(ds, normals=data.get("normals"), kd=data.get("kd"),
                                 ks=data.get("ks"), gloss=data.get("gloss"),
-                                depth=data.get("depth"), gloss_limits=gloss_limits,
+                                depth=data.get("depth"), depth_range=depth_range,
+                                gloss_limits=gloss_limits,
                                 input_colorspace=input_colorspace, share=share,
                                 layer_id=layer_id, label=lbl)
 

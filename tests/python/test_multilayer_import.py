@@ -116,7 +116,7 @@ def test_bands_and_false_colour_fusion(tmp_path: Path) -> None:
     assert [layer["id"] for layer in desc["layers"]] == ["IR", "R", "G", "fc_IR_R_G"]
     assert desc["layers"][0]["service"]["planes"][0]["channels"] == ["Y"]
     fused = pyvips.Image.new_from_file(
-        str(out / "iiif/fc_IR_R_G/0,0,96,64/96,64/0/default.png")).numpy()
+        str(out / "iiif/fc_IR_R_G/full/max/0/default.png")).numpy()
     expected = np.stack([_rng_image(20, 1), _rng_image(21, 1), _rng_image(22, 1)], axis=-1)
     np.testing.assert_array_equal(fused, expected)
 
@@ -176,7 +176,7 @@ def test_seed_paper_scene_is_imported(tmp_path: Path) -> None:
     assert ptm["planes"][1]["bias"] == pytest.approx([87 / 255, 78 / 255, 0.0])
     assert ptm["planes"][0]["scale"] == [2.0, 2.0, 2.0]
     first = ptm["planes"][0]["service"]["id"].rsplit("/", 1)[1]
-    stored = pyvips.Image.new_from_file(str(out / f"iiif/{first}/0,0,96,64/96,64/0/default.png"))
+    stored = pyvips.Image.new_from_file(str(out / f"iiif/{first}/full/max/0/default.png"))
     np.testing.assert_array_equal(stored.numpy(), _rng_image(30))  # the file's own bytes
     assert uv["service"]["layerType"] == "svbrdf"
     assert uv["service"]["glossLimits"] == [0.01, 0.5]
@@ -222,3 +222,20 @@ def test_bad_descriptions(tmp_path: Path, capsys: pytest.CaptureFixture[str], la
     assert main(["import", str(desc), "-o", str(tmp_path / "out" / "d")]) == 2
     assert problem in capsys.readouterr().err
     assert not (tmp_path / "out").exists()
+
+
+def test_depth_map_keeps_its_range(tmp_path: Path) -> None:
+    _png(tmp_path / "N.png", _normal_map(0))
+    depth = np.linspace(2.5, 7.5, W * H, dtype=np.float32).reshape(H, W)
+    pyvips.Image.new_from_array(depth).tiffsave(str(tmp_path / "z.tif"))
+    desc = tmp_path / "d.json"
+    desc.write_text(json.dumps({"layers": [{"id": "m", "type": "svbrdf",
+                                            "maps": {"normals": "N.png", "depth": "z.tif"}}]}))
+    out = tmp_path / "depth"
+    assert main(["import", str(desc), "-o", str(out)]) == 0
+    plane = _desc(out)["layers"][0]["service"]["planes"][1]
+    assert plane["channels"] == ["DEPTH"]
+    scale, bias = plane["scale"][0], plane["bias"][0]
+    # (t − bias)·scale spans the source's depths: t = 0 → 2.5, t = 1 → 7.5
+    assert (0 - bias) * scale == pytest.approx(2.5, abs=1e-5)
+    assert (1 - bias) * scale == pytest.approx(7.5, abs=1e-5)
