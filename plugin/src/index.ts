@@ -1,26 +1,40 @@
 /**
- * Lanterna OpenSeadragon plugin: relightable IIIF images (PTM) on the web.
+ * Lanterna OpenSeadragon plugin: relightable IIIF images (PTM, HSH, shape and material, images) on the web.
  *
  * @packageDocumentation
  */
-export { createViewer, type CreateViewerOptions, type LanternaViewer } from './viewer';
+export {
+  createViewer, RenderModeError, UnknownLayerError, type CreateViewerOptions, type LanternaViewer, type LayerInfo,
+} from './viewer';
 export { RelightDrawer, RELIGHT_DRAWER_TYPE, WebGLUnavailableError, type PixelData } from './drawer/relight-drawer';
+export { FloatTargetsUnavailableError } from './drawer/screen-filter';
 export { BundleTileSource, type BundleTileSourceOptions } from './tiles/bundle-tile-source';
 export { BUNDLE_DATA_TYPE, registerBundleType, type PlaneBundle } from './tiles/bundle';
 export { bundleKey } from './tiles/tile-key';
-export { loadRelightManifest, fetchJson, type LoadedLayer } from './iiif/load';
-export { parseManifest, findPaintingImage, labelText, type ManifestInfo } from './iiif/manifest';
+export { loadRelightManifest, loadLayer, fetchJson, type LoadedLayer, type LoadedManifest } from './iiif/load';
 export {
-  parseRelightService, expectedChannels, RELIGHT_PROFILE, RELIGHT_SERVICE_TYPE,
-  type RelightLayer, type PlaneGroup, type LayerType, type PtmColorspace,
+  parseManifest, findPaintingImage, findPaintingImages, labelText, idFromUrl, type ManifestInfo, type ManifestLayer,
+} from './iiif/manifest';
+export {
+  parseRelightService, expectedChannels, svbrdfMapIndices, RELIGHT_PROFILE, RELIGHT_SERVICE_TYPE, SVBRDF_MAPS,
+  type RelightLayer, type PlaneGroup, type LayerType, type PtmColorspace, type InputColorSpace,
 } from './iiif/relight-service';
 export { imageGeometry, commonGeometry, type ImageGeometry } from './iiif/image-info';
 export {
   LanternaError, ManifestError, MissingRelightServiceError, RelightServiceError, ImageInfoError,
   MismatchedPlanesError, FetchError,
 } from './iiif/errors';
+export { ShaderError } from './layers/programs';
 export { ptmWeights, relightPtmPixel, BASES, PTM_BASIS_TERMS, type LightBasis } from './math/ptm-basis';
+export { hshWeights } from './math/hsh-basis';
 export {
   lightFromPointer, lightFromProjection, nudgeLight, OVERHEAD_LIGHT, type Light, type NudgeDirection,
 } from './math/light';
+export {
+  RENDER_MODES, MODE_LABELS, applicableModes, shadingClass, isRenderMode, type RenderMode, type ShadingClass,
+} from './render/modes';
+export {
+  DEFAULT_RENDER_PARAMS, PARAM_SPECS, mergeParams, relevantParams, type RenderParams, type RenderParamName,
+} from './render/params';
+export { createControls, type Controls } from './ui/controls';
 export type { DragMode } from './ui/interaction';

@@ -4,11 +4,13 @@
 //   node tests/browser/render.mjs SPEC.json
 //
 // SPEC = {"url": "…/viewer/?manifest=…", "viewport": {"width": 640, "height": 480},
-//         "shots": [{"light": [lu, lv], "region": [x, y, w, h], "out": "/abs/shot.rgba"}],
+//         "shots": [{"light": [lu, lv], "region": [x, y, w, h], "out": "/abs/shot.rgba",
+//                    "layer": "ptm", "mode": "specular", "params": {"specExponent": 40}}],
 //         "screenshot": "/abs/optional.png", "timeoutMs": 60000}
 //
-// For each shot: set the light, fit the image-pixel region to the viewport, wait until every tile
-// is loaded and drawn, read the frame back (RGBA, rows top-down) and write the raw bytes to `out`
+// For each shot: switch to `layer` (a layer id), set the render `mode` and the render `params`
+// (each optional: when absent the current layer, mode and parameters stay), then set the light,
+// fit the image-pixel region to the viewport, wait until every tile is loaded and drawn, read the frame back (RGBA, rows top-down) and write the raw bytes to `out`
 // and {width, height} to `out + ".json"`. One JSON line per shot goes to stdout. Exits non-zero on
 // a page error, a console error, or a step taking longer than timeoutMs (default 60 s).
 import { readFileSync, writeFileSync } from 'node:fs';
@@ -40,6 +42,10 @@ function readSpec(path) {
     if (!Array.isArray(s.light) || s.light.length !== 2 || !Array.isArray(s.region) || s.region.length !== 4
       || typeof s.out !== 'string') {
       throw new RenderError(`${path}: shot ${i} needs light [lu, lv], region [x, y, w, h] and out`);
+    }
+    if ((s.layer !== undefined && typeof s.layer !== 'string') || (s.mode !== undefined && typeof s.mode !== 'string')
+      || (s.params !== undefined && (typeof s.params !== 'object' || s.params === null || Array.isArray(s.params)))) {
+      throw new RenderError(`${path}: shot ${i}: layer and mode must be strings, params an object`);
     }
   }
   return spec;
@@ -81,8 +87,17 @@ async function main() {
     await withTimeout(page.evaluate(() => window.lanterna.ready), timeoutMs, 'waiting for lanterna.ready');
     check();
     for (const shot of spec.shots) {
-      const result = await withTimeout(page.evaluate(async ({ light, region }) => {
+      const result = await withTimeout(page.evaluate(async ({ light, region, layer, mode, params }) => {
         const l = window.lanterna;
+        if (layer !== undefined) {
+          await l.setActiveLayer(layer);
+        }
+        if (mode !== undefined) {
+          l.setRenderMode(mode);
+        }
+        if (params !== undefined) {
+          l.setRenderParams(params);
+        }
         l.setLight(light[0], light[1]);
         l.showImageRegion(region[0], region[1], region[2], region[3]);
         await l.whenFullyLoaded();
@@ -92,7 +107,7 @@ async function main() {
         for (let i = 0; i < data.length; i += chunk) {
           binary += String.fromCharCode.apply(null, data.subarray(i, i + chunk));
         }
-        return { width, height, base64: btoa(binary) };
+        return { width, height, base64: btoa(binary), layer: l.getActiveLayer(), mode: l.getRenderMode() };
       }, shot), timeoutMs, `shot ${JSON.stringify(shot)}`);
       check();
       const bytes = Buffer.from(result.base64, 'base64');
@@ -103,6 +118,7 @@ async function main() {
       writeFileSync(`${shot.out}.json`, JSON.stringify({ width: result.width, height: result.height }));
       process.stdout.write(`${JSON.stringify({
         out: shot.out, width: result.width, height: result.height, light: shot.light, region: shot.region,
+        layer: result.layer, mode: result.mode,
       })}\n`);
     }
     if (spec.screenshot) {

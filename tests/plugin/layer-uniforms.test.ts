@@ -1,5 +1,8 @@
 import { describe, expect, it } from 'vitest';
-import { MAX_PLANES, U_BIAS, U_SCALE, U_WEIGHTS } from '../../plugin/src/gl/uniforms';
+import {
+  MAX_PLANES, U_BIAS, U_GLOSS_LIMITS, U_HALF, U_LIGHT, U_MAPS, U_PARAM, U_SCALE, U_SRGB_INPUT, U_WEIGHTS,
+} from '../../plugin/src/gl/uniforms';
+import { DEFAULT_RENDER_PARAMS } from '../../plugin/src/render/params';
 import { parseRelightService } from '../../plugin/src/iiif/relight-service';
 import { layerUniforms } from '../../plugin/src/layers/layer-uniforms';
 import { relightBlock } from './fixtures';
@@ -19,7 +22,7 @@ describe('layerUniforms', () => {
 
   it('passes the PTM weights for the light', () => {
     const u = layerUniforms(layer, 0.5, -0.5);
-    expect(Array.from(u[U_WEIGHTS])).toEqual([0.25, 0.25, -0.25, 0.5, -0.5, 1]);
+    expect(Array.from(u[U_WEIGHTS])).toEqual([0.25, 0.25, -0.25, 0.5, -0.5, 1, ...(new Array(10).fill(0) as number[])]);
   });
 
   it('gives an image layer no basis weights', () => {
@@ -28,6 +31,44 @@ describe('layerUniforms', () => {
       width: 4, height: 4,
       planes: [{ service: { id: 'http://h/i' }, channels: ['R', 'G', 'B'], scale: [1, 1, 1], bias: [0, 0, 0] }],
     });
-    expect(Array.from(layerUniforms(image, 0.5, 0.5)[U_WEIGHTS])).toEqual([0, 0, 0, 0, 0, 0]);
+    expect(Array.from(layerUniforms(image, 0.5, 0.5)[U_WEIGHTS])).toEqual(new Array(16).fill(0));
+  });
+
+  it('repeats a single-band group\'s scale and bias, and indexes svbrdf maps', () => {
+    const plane = (id: string, channels: string[], scale: number[], bias: number[]) => (
+      { service: { id }, channels, scale, bias });
+    const sv = parseRelightService({
+      type: 'LanternaRelight', profile: 'urn:lanterna:relight:1', layerType: 'svbrdf', width: 4, height: 4,
+      inputColorSpace: 'srgb', glossLimits: [0.05, 0.3],
+      planes: [plane('k', ['KD_R', 'KD_G', 'KD_B'], [1, 1, 1], [0, 0, 0]), plane('g', ['GLOSS'], [0.5], [0.25]),
+        plane('n', ['NX', 'NY', 'NZ'], [2, 2, 2], [0.5, 0.5, 0.5])],
+    });
+    const u = layerUniforms(sv, 0, 0);
+    expect(Array.from(u[U_SCALE].slice(3, 6))).toEqual([0.5, 0.5, 0.5]);
+    expect(Array.from(u[U_BIAS].slice(3, 6))).toEqual([0.25, 0.25, 0.25]);
+    expect(Array.from(u[U_MAPS])).toEqual([2, 0, -1, 1]);
+    expect(u[U_SRGB_INPUT]).toBe(1);
+    expect(Array.from(u[U_GLOSS_LIMITS])).toEqual([Math.fround(0.05), Math.fround(0.3)]);
+  });
+
+  it('passes the light, the half vector and the parameters', () => {
+    const u = layerUniforms(layer, 0.6, 0, { ...DEFAULT_RENDER_PARAMS, gamma: 2.2 });
+    expect(Array.from(u[U_LIGHT]).map((x) => +x.toFixed(6))).toEqual([0.6, 0, 0.8]);
+    const h = Array.from(u[U_HALF]);
+    expect(Math.hypot(...h)).toBeCloseTo(1, 6);
+    expect(h[0] / h[2]).toBeCloseTo(0.6 / 1.8, 6);
+    expect(u[U_PARAM.gamma]).toBe(2.2);
+    expect(u[U_PARAM.specExponent]).toBe(75);
+  });
+
+  it('gives an hsh layer its light weights', () => {
+    const planes = Array.from({ length: 9 }, (_, k) => ({
+      service: { id: `t${k}` }, channels: [`R${k}`, `G${k}`, `B${k}`], scale: [1, 1, 1], bias: [0, 0, 0] }));
+    const hsh = parseRelightService({
+      type: 'LanternaRelight', profile: 'urn:lanterna:relight:1', layerType: 'hsh', terms: 9, width: 4, height: 4, planes,
+    });
+    const w = layerUniforms(hsh, 0, 0)[U_WEIGHTS];
+    expect(w[0]).toBeCloseTo(1 / Math.sqrt(2 * Math.PI), 6);
+    expect(w[9]).toBe(0);
   });
 });

@@ -59,7 +59,7 @@ describe('parseRelightService', () => {
     expect(() => parseRelightService({ ...relightBlock(), basis: ['1', 'lu', 'lv', 'lu2', 'lv2', 'lulv'] }))
       .toThrow(/basis/);
     expect(() => parseRelightService({ ...relightBlock(), profile: 'urn:other' })).toThrow(RelightServiceError);
-    expect(() => parseRelightService({ ...relightBlock(), layerType: 'hsh' })).toThrow(/layerType/);
+    expect(() => parseRelightService({ ...relightBlock(), layerType: 'rti' })).toThrow(/layerType/);
     expect(() => parseRelightService({ ...relightBlock(), width: 0 })).toThrow(/width/);
   });
 

@@ -1,7 +1,7 @@
 /**
  * The viewer page: `index.html?manifest=URL`. Exposes the viewer as `window.lanterna`.
  */
-import { createViewer, type LanternaViewer } from '../index';
+import { createControls, createViewer, type LanternaViewer } from '../index';
 
 declare global {
   interface Window {
@@ -9,10 +9,11 @@ declare global {
   }
 }
 
-function showError(message: string): void {
+function showError(error: unknown): void {
   const box = document.getElementById('error');
   if (box) {
-    box.textContent = message;
+    box.textContent = typeof error === 'string' ? error
+      : error instanceof Error ? `${error.name}: ${error.message}` : String(error);
     box.hidden = false;
   }
 }
@@ -27,20 +28,23 @@ if (!manifest) {
   const label = document.getElementById('label');
   const modeButton = document.getElementById('mode');
   const homeButton = document.getElementById('home');
+  const panel = document.getElementById('panel');
   modeButton?.addEventListener('click', () => {
     const next = lanterna.getMode() === 'light' ? 'pan' : 'light';
     lanterna.setMode(next);
-    modeButton.textContent = next === 'light' ? 'Light' : 'Pan';
+    modeButton.textContent = next === 'light' ? 'Drag: light' : 'Drag: pan';
     modeButton.setAttribute('aria-pressed', String(next === 'light'));
   });
   homeButton?.addEventListener('click', () => { lanterna.viewer.viewport.goHome(); });
   lanterna.ready.then(() => {
-    const text = lanterna.layer?.label ?? '';
+    const text = lanterna.manifest?.label ?? '';
     if (label) {
       label.textContent = text;
     }
     document.title = text ? `${text} · Lanterna` : 'Lanterna viewer';
-  }, (error: unknown) => {
-    showError(error instanceof Error ? `${error.name}: ${error.message}` : String(error));
-  });
+    if (panel) {
+      createControls(lanterna, panel, showError);
+      panel.hidden = false;
+    }
+  }, showError);
 }

@@ -6,13 +6,18 @@ import OpenSeadragon from 'openseadragon';
 import * as twgl from 'twgl.js';
 import { LanternaError } from '../iiif/errors';
 import type { RelightLayer } from '../iiif/relight-service';
-import { layerUniforms } from '../layers/layer-uniforms';
-import { createPrograms, programKind, type ProgramKind } from '../layers/programs';
+import type { Stage } from '../gl/glsl/modes.glsl';
+import { layerUniforms, type LayerUniforms } from '../layers/layer-uniforms';
+import { ProgramCache, programKind, type ProgramKind } from '../layers/programs';
 import { lightFromProjection, OVERHEAD_LIGHT, type Light } from '../math/light';
 import { modelMatrix, multiply, viewMatrix, type Mat3 } from '../math/matrix';
+import { modeFilter } from '../render/filter-plan';
+import { applicableModes, DEFAULT_RENDER_MODE, type RenderMode } from '../render/modes';
+import { DEFAULT_RENDER_PARAMS, type RenderParams } from '../render/params';
 import { BUNDLE_DATA_TYPE, type PlaneBundle } from '../tiles/bundle';
-import { U_MATRIX, U_PLANES, U_TEX_SCALE } from '../gl/uniforms';
+import { U_FILTERED, U_MATRIX, U_PLANES, U_TEX_SCALE } from '../gl/uniforms';
 import { createSamplers, uploadPlaneBundle } from './plane-texture';
+import { ScreenFilter } from './screen-filter';
 
 /** The drawer's type name (`getType()`). */
 export const RELIGHT_DRAWER_TYPE = 'lanterna';
@@ -64,7 +69,10 @@ const CONTEXT_ATTRIBUTES: WebGLContextAttributes = {
  */
 export class RelightDrawer extends OpenSeadragon.DrawerBase {
   declare private gl: WebGL2RenderingContext;
-  declare private programs: Record<ProgramKind, twgl.ProgramInfo> | null;
+  declare private programs: ProgramCache | null;
+  declare private screenFilter: ScreenFilter | null;
+  declare private mode: RenderMode;
+  declare private params: RenderParams;
   declare private samplers: { linear: WebGLSampler; nearest: WebGLSampler } | null;
   declare private layers: WeakMap<object, RelightLayer>;
   declare private light: Light;
@@ -84,7 +92,10 @@ export class RelightDrawer extends OpenSeadragon.DrawerBase {
     this.lastFrame = [];
     this.destroyed = false;
     this.programs = null;
+    this.screenFilter = null;
     this.samplers = null;
+    this.mode = DEFAULT_RENDER_MODE;
+    this.params = DEFAULT_RENDER_PARAMS;
     const gl = this.canvas.getContext('webgl2', CONTEXT_ATTRIBUTES);
     if (!gl) {
       throw new WebGLUnavailableError('WebGL2 is not available');
@@ -94,6 +105,8 @@ export class RelightDrawer extends OpenSeadragon.DrawerBase {
     this.onLost = (e: Event) => { e.preventDefault(); };
     this.onRestored = () => {
       this.generation++;
+      this.programs?.clear();
+      this.screenFilter = null;
       this.setupGl();
       this.setInternalCacheNeedsRefresh();
       this.viewer.forceRedraw();
@@ -140,6 +153,44 @@ export class RelightDrawer extends OpenSeadragon.DrawerBase {
   /** The current light. */
   getLight(): Light {
     return this.light;
+  }
+
+  /**
+   * Set the render mode (layers it does not apply to are drawn in `color`). Call
+   * `viewer.forceRedraw()` afterwards.
+   */
+  setRenderMode(mode: RenderMode): void {
+    this.mode = mode;
+  }
+
+  /** The render mode. */
+  getRenderMode(): RenderMode {
+    return this.mode;
+  }
+
+  /** Set the render parameters (already clamped). Call `viewer.forceRedraw()` afterwards. */
+  setRenderParams(params: RenderParams): void {
+    this.params = params;
+  }
+
+  /**
+   * Compile the programs a layer needs in a mode now, so that errors surface here rather than
+   * during a frame.
+   *
+   * @throws {@link ShaderError} or {@link FloatTargetsUnavailableError}
+   */
+  prepare(layer: RelightLayer, mode: RenderMode): void {
+    if (!this.programs) {
+      return;
+    }
+    const kind = programKind(layer);
+    if (modeFilter(mode)) {
+      this.screenFilter ??= new ScreenFilter(this.gl);
+      this.programs.get(kind, mode, 'quantity');
+      this.programs.get(kind, mode, 'combine');
+    } else {
+      this.programs.get(kind, mode, 'direct');
+    }
   }
 
   override setImageSmoothingEnabled(enabled: boolean): void {
@@ -208,6 +259,8 @@ export class RelightDrawer extends OpenSeadragon.DrawerBase {
     }
     this.destroyed = true;
     this.destroyInternalCache();
+    this.programs?.clear();
+    this.screenFilter?.destroy();
     super.destroy();
     this.canvas.removeEventListener('webglcontextlost', this.onLost);
     this.canvas.removeEventListener('webglcontextrestored', this.onRestored);
@@ -219,7 +272,7 @@ export class RelightDrawer extends OpenSeadragon.DrawerBase {
   }
 
   private setupGl(): void {
-    this.programs = createPrograms(this.gl);
+    this.programs = new ProgramCache(this.gl);
     this.samplers = createSamplers(this.gl);
   }
 
@@ -252,35 +305,67 @@ export class RelightDrawer extends OpenSeadragon.DrawerBase {
     gl.clearColor(0, 0, 0, 0);
     gl.clear(gl.COLOR_BUFFER_BIT);
     const view = this.currentViewMatrix();
-    const sampler = this.smoothing ? this.samplers.linear : this.samplers.nearest;
     for (const { item, tiles } of this.lastFrame) {
       const layer = this.layers.get(item);
       if (!layer || item.getOpacity() === 0 || tiles.length === 0) {
         continue;
       }
-      const programInfo = this.programs[programKind(layer)];
-      gl.useProgram(programInfo.program);
-      twgl.setUniforms(programInfo, layerUniforms(layer, this.light.lu, this.light.lv));
+      const mode = applicableModes(layer).includes(this.mode) ? this.mode : DEFAULT_RENDER_MODE;
+      const kind = programKind(layer);
+      const uniforms = layerUniforms(layer, this.light.lu, this.light.lv, this.params);
       const itemMatrix = multiply(view, this.itemRotation(item));
-      // Tiles come coarse level first; finer tiles are drawn over them (painter's algorithm), opaque.
-      for (const tile of tiles) {
-        const data = this.getDataToDraw(tile as unknown as OpenSeadragon.Tile) as TileTexture | undefined;
-        if (!data?.texture) {
-          continue;
-        }
-        const matrix = multiply(itemMatrix, modelMatrix(tile.positionedBounds, tile.flipped === true));
-        gl.activeTexture(gl.TEXTURE0);
-        gl.bindTexture(gl.TEXTURE_2D_ARRAY, data.texture);
-        gl.bindSampler(0, sampler);
-        twgl.setUniforms(programInfo, {
-          [U_PLANES]: data.texture,
-          [U_MATRIX]: new Float32Array(matrix),
-          [U_TEX_SCALE]: data.texScale,
-        });
-        gl.drawArrays(gl.TRIANGLE_STRIP, 0, 4);
+      const filter = modeFilter(mode);
+      if (!filter) {
+        this.drawTiles(kind, mode, 'direct', uniforms, itemMatrix, tiles, null);
+        continue;
       }
+      // Screen-space unsharp masking: quantity for the whole view, box passes, then combine.
+      this.screenFilter ??= new ScreenFilter(gl);
+      this.screenFilter.beginQuantity(gl.drawingBufferWidth, gl.drawingBufferHeight);
+      this.drawTiles(kind, mode, 'quantity', uniforms, itemMatrix, tiles, null);
+      const filtered = this.screenFilter.filter(filter);
+      gl.bindFramebuffer(gl.FRAMEBUFFER, null);
+      gl.viewport(0, 0, gl.drawingBufferWidth, gl.drawingBufferHeight);
+      this.drawTiles(kind, mode, 'combine', uniforms, itemMatrix, tiles, filtered);
     }
+    gl.activeTexture(gl.TEXTURE1);
+    gl.bindTexture(gl.TEXTURE_2D, null);
+    gl.activeTexture(gl.TEXTURE0);
     gl.bindSampler(0, null);
+  }
+
+  /** Draw an item's tiles (coarse level first, finer over them: painter's algorithm, opaque). */
+  private drawTiles(kind: ProgramKind, mode: RenderMode, stage: Stage, uniforms: LayerUniforms,
+    itemMatrix: Mat3, tiles: TileLike[], filtered: WebGLTexture | null): void {
+    const gl = this.gl;
+    if (!this.programs || !this.samplers) {
+      return;
+    }
+    const programInfo = this.programs.get(kind, mode, stage);
+    gl.useProgram(programInfo.program);
+    twgl.setUniforms(programInfo, uniforms);
+    gl.uniform1i(gl.getUniformLocation(programInfo.program, U_PLANES), 0);
+    if (filtered) {
+      gl.activeTexture(gl.TEXTURE1);
+      gl.bindTexture(gl.TEXTURE_2D, filtered);
+      gl.bindSampler(1, null);
+      gl.uniform1i(gl.getUniformLocation(programInfo.program, U_FILTERED), 1);
+    }
+    gl.activeTexture(gl.TEXTURE0);
+    gl.bindSampler(0, this.smoothing ? this.samplers.linear : this.samplers.nearest);
+    for (const tile of tiles) {
+      const data = this.getDataToDraw(tile as unknown as OpenSeadragon.Tile) as TileTexture | undefined;
+      if (!data?.texture) {
+        continue;
+      }
+      const matrix = multiply(itemMatrix, modelMatrix(tile.positionedBounds, tile.flipped === true));
+      gl.bindTexture(gl.TEXTURE_2D_ARRAY, data.texture);
+      twgl.setUniforms(programInfo, {
+        [U_MATRIX]: new Float32Array(matrix),
+        [U_TEX_SCALE]: data.texScale,
+      });
+      gl.drawArrays(gl.TRIANGLE_STRIP, 0, 4);
+    }
   }
 
   private itemRotation(item: TiledImageLike): Mat3 {

@@ -1,6 +1,7 @@
 /**
  * GLSL uniform names shared by the TypeScript side and the shader sources.
  */
+import type { RenderParamName } from '../render/params';
 
 /** mat3: unit quad → clip space. */
 export const U_MATRIX = 'u_matrix';
@@ -8,16 +9,54 @@ export const U_MATRIX = 'u_matrix';
 export const U_TEX_SCALE = 'u_texScale';
 /** sampler2DArray: the plane groups of one tile, one layer per group. */
 export const U_PLANES = 'u_planes';
-/** vec3[K]: per-channel scale of each plane group. */
+/** vec3[MAX_PLANES]: per-channel scale of each plane group (single-band groups repeat theirs). */
 export const U_SCALE = 'u_scale';
-/** vec3[K]: per-channel bias of each plane group. */
+/** vec3[MAX_PLANES]: per-channel bias of each plane group. */
 export const U_BIAS = 'u_bias';
-/** vec3[2]: basis weights, terms 0–2 then 3–5. */
+/** float[MAX_TERMS]: basis weights of the light (PTM: 6, HSH: 4/9/16). */
 export const U_WEIGHTS = 'u_weights';
+/** vec3: the unit light direction l. */
+export const U_LIGHT = 'u_light';
+/** vec3: the half vector h = normalize(l + v), v = (0, 0, 1). */
+export const U_HALF = 'u_half';
+/** float[48]: HSH weights of the three normal-estimate lights, 16 per light. */
+export const U_HSH_NORMAL_WEIGHTS = 'u_hshNormalWeights';
+/** mat3: inverse of the normal-estimate light matrix. */
+export const U_HSH_NORMAL_INV = 'u_hshNormalInv';
+/** ivec4: plane index of the svbrdf normals, kd, ks and gloss maps (-1 when absent). */
+export const U_MAPS = 'u_maps';
+/** vec2: svbrdf glossLimits. */
+export const U_GLOSS_LIMITS = 'u_glossLimits';
+/** int: 1 when svbrdf kd/ks are sRGB-encoded. */
+export const U_SRGB_INPUT = 'u_srgbInput';
+/** sampler2D: the box-filtered (q·a, a) of the unsharp modes (combine stage). */
+export const U_FILTERED = 'u_filtered';
+/** sampler2D: the input of a box pass. */
+export const U_SOURCE = 'u_source';
+/** ivec2: box pass direction, (1, 0) or (0, 1). */
+export const U_STEP = 'u_step';
+/** int: box pass radius. */
+export const U_RADIUS = 'u_radius';
 /** Vertex-to-fragment varying: texture coordinates. */
 export const V_UV = 'v_uv';
 /** Fragment output. */
 export const OUT_COLOR = 'outColor';
 
-/** Largest number of plane groups one layer may have (PTM rgb uses 6). */
-export const MAX_PLANES = 6;
+/** float uniform of each render parameter, e.g. `u_gamma`. */
+export const U_PARAM: Readonly<Record<RenderParamName, string>> = {
+  lightIntensity: 'u_lightIntensity',
+  gamma: 'u_gamma',
+  brightness: 'u_brightness',
+  specKd: 'u_specKd',
+  specKs: 'u_specKs',
+  specExponent: 'u_specExponent',
+  diffuseGain: 'u_diffuseGain',
+  umGain: 'u_umGain',
+  umKd: 'u_umKd',
+  umEnv: 'u_umEnv',
+};
+
+/** Largest number of plane groups one layer may have (HSH16). */
+export const MAX_PLANES = 16;
+/** Largest number of basis terms (HSH16). */
+export const MAX_TERMS = 16;

@@ -4,13 +4,27 @@
 import { ManifestError, MissingRelightServiceError } from './errors';
 import { parseRelightService, RELIGHT_SERVICE_TYPE, type RelightLayer } from './relight-service';
 
+/** One layer of a manifest: a painting `Image` (a `Choice` item) with its relight service. */
+export interface ManifestLayer {
+  /** Layer id: the file name of the relight service id (`…/layers/ptm.json` → `ptm`), else of the image service's. */
+  readonly id: string;
+  /** The image's label, or the id. */
+  readonly label: string;
+  /** The painting image's id (its colour image URL). */
+  readonly imageId: string;
+  /** The validated relight layer. */
+  readonly layer: RelightLayer;
+}
+
 /** What the viewer needs from a manifest. */
 export interface ManifestInfo {
   /** The manifest's label (first value of its language map), or '' if none. */
   readonly label: string;
-  /** The painting image's id (its colour image URL). */
+  /** Every relightable layer, in manifest order (the first is the default). */
+  readonly layers: readonly ManifestLayer[];
+  /** The default layer's image id (= `layers[0].imageId`). */
   readonly imageId: string;
-  /** The validated relight layer of the painting image. */
+  /** The default layer (= `layers[0].layer`). */
   readonly layer: RelightLayer;
 }
 
@@ -48,11 +62,12 @@ export function labelText(label: unknown): string {
 }
 
 /**
- * The painting body of the first canvas: an `Image`, or the first `Image` of a `Choice`.
+ * The painting images of the first canvas that has any: an `Image` body, or every `Image` of a
+ * `Choice`, in order.
  *
  * @throws {@link ManifestError} when there is none
  */
-export function findPaintingImage(manifest: unknown): Json {
+export function findPaintingImages(manifest: unknown): Json[] {
   if (!isRecord(manifest) || manifest.type !== 'Manifest') {
     throw new ManifestError('not a IIIF Presentation 3 manifest (type must be "Manifest")');
   }
@@ -60,6 +75,7 @@ export function findPaintingImage(manifest: unknown): Json {
     if (!isRecord(canvas)) {
       continue;
     }
+    const images: Json[] = [];
     for (const page of asArray(canvas.items)) {
       if (!isRecord(page)) {
         continue;
@@ -73,36 +89,68 @@ export function findPaintingImage(manifest: unknown): Json {
             continue;
           }
           if (body.type === 'Image') {
-            return body;
-          }
-          if (body.type === 'Choice') {
-            const image = asArray(body.items).find((it) => isRecord(it) && it.type === 'Image');
-            if (isRecord(image)) {
-              return image;
-            }
+            images.push(body);
+          } else if (body.type === 'Choice') {
+            images.push(...asArray(body.items).filter((it): it is Json => isRecord(it) && it.type === 'Image'));
           }
         }
       }
+    }
+    if (images.length > 0) {
+      return images;
     }
   }
   throw new ManifestError('the manifest has no painting Image (or Choice of Images) on any canvas');
 }
 
 /**
- * Parse a manifest into the relight layer of its painting image.
+ * The painting body of the first canvas: an `Image`, or the first `Image` of a `Choice`.
  *
- * @throws {@link ManifestError} no painting image;
- *   {@link MissingRelightServiceError} the image has no `LanternaRelight` service;
- *   {@link RelightServiceError} the service block is invalid
+ * @throws {@link ManifestError} when there is none
+ */
+export function findPaintingImage(manifest: unknown): Json {
+  return findPaintingImages(manifest)[0];
+}
+
+/** The last path segment of a URL without its extension (`…/layers/ptm.json` → `ptm`). */
+export function idFromUrl(url: string): string {
+  const path = url.split(/[?#]/)[0] ?? '';
+  const name = path.replace(/\/+$/, '').split('/').pop() ?? '';
+  return name.replace(/\.[^.]*$/, '');
+}
+
+/**
+ * Parse a manifest into its relightable layers (every painting image with a `LanternaRelight`
+ * service; images without one are skipped).
+ *
+ * @throws {@link ManifestError} no painting image, or two layers with the same id;
+ *   {@link MissingRelightServiceError} no image has a `LanternaRelight` service;
+ *   {@link RelightServiceError} a service block is invalid
  */
 export function parseManifest(manifest: unknown): ManifestInfo {
-  const image = findPaintingImage(manifest);
-  const service = asArray(image.service).find((s) => isRecord(s) && s.type === RELIGHT_SERVICE_TYPE);
-  if (service === undefined) {
+  const images = findPaintingImages(manifest);
+  const layers: ManifestLayer[] = [];
+  for (const image of images) {
+    const service = asArray(image.service).find((s) => isRecord(s) && s.type === RELIGHT_SERVICE_TYPE);
+    if (service === undefined) {
+      continue;
+    }
+    const layer = parseRelightService(service);
+    const imageId = typeof image.id === 'string' ? image.id : '';
+    const imageService = asArray(image.service).find((s) => isRecord(s) && s.type !== RELIGHT_SERVICE_TYPE);
+    const serviceId = isRecord(imageService) && typeof imageService.id === 'string' ? imageService.id : '';
+    const id = idFromUrl(layer.id) || idFromUrl(serviceId) || `layer${layers.length}`;
+    if (layers.some((l) => l.id === id)) {
+      throw new ManifestError(`two layers have the id ${JSON.stringify(id)}`);
+    }
+    layers.push({ id, label: labelText(image.label) || id, imageId, layer });
+  }
+  const first = layers[0];
+  if (!first) {
     throw new MissingRelightServiceError(
-      `the painting image ${String(image.id)} has no ${RELIGHT_SERVICE_TYPE} service`,
+      `the painting image ${String(images[0]?.id)} has no ${RELIGHT_SERVICE_TYPE} service`,
     );
   }
   const label = isRecord(manifest) ? labelText(manifest.label) : '';
-  return { label, imageId: typeof image.id === 'string' ? image.id : '', layer: parseRelightService(service) };
+  return { label, layers, imageId: first.imageId, layer: first.layer };
 }

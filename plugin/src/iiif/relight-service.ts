@@ -11,22 +11,41 @@ export const RELIGHT_SERVICE_TYPE = 'LanternaRelight';
 export const RELIGHT_PROFILE = 'urn:lanterna:relight:1';
 
 /** Supported layer types. */
-export type LayerType = 'ptm' | 'image';
+export type LayerType = 'ptm' | 'hsh' | 'svbrdf' | 'image';
 /** Colour spaces of a PTM layer. */
 export type PtmColorspace = 'lrgb' | 'rgb';
+/** How an svbrdf layer's kd and ks are encoded. */
+export type InputColorSpace = 'linear' | 'srgb';
 
-/** One plane group: an RGB IIIF image holding three channels. */
+/** Term counts of an HSH layer. */
+export const HSH_TERM_COUNTS = [4, 9, 16] as const;
+
+/** Channel groups of an svbrdf layer, by map. */
+export const SVBRDF_MAPS = {
+  normals: ['NX', 'NY', 'NZ'],
+  kd: ['KD_R', 'KD_G', 'KD_B'],
+  ks: ['KS_R', 'KS_G', 'KS_B'],
+  gloss: ['GLOSS'],
+  depth: ['DEPTH'],
+} as const satisfies Record<string, readonly string[]>;
+/** Map names of an svbrdf layer. */
+export type SvbrdfMap = keyof typeof SVBRDF_MAPS;
+
+/** Default `glossLimits` of an svbrdf layer. */
+export const DEFAULT_GLOSS_LIMITS: readonly [number, number] = [0.01, 0.5];
+
+/** One plane group: one IIIF image holding three channels (RGB) or one (single-band, grey). */
 export interface PlaneGroup {
   /** IIIF Image service id (base URL, no `/info.json`). */
   readonly serviceId: string;
   /** Tile format, e.g. `png`. */
   readonly format: string;
-  /** Channel names, three per group. */
-  readonly channels: readonly [string, string, string];
-  /** Per-channel scale: `v = (t − bias) · scale`. */
-  readonly scale: readonly [number, number, number];
-  /** Per-channel bias, in texel/255 units. */
-  readonly bias: readonly [number, number, number];
+  /** Channel names: three, or one for a single-band image. */
+  readonly channels: readonly string[];
+  /** Per-channel scale: `v = (t − bias) · scale` (same length as `channels`). */
+  readonly scale: readonly number[];
+  /** Per-channel bias, in texel/255 units (same length as `channels`). */
+  readonly bias: readonly number[];
 }
 
 /** A validated relightable layer. */
@@ -34,17 +53,32 @@ export interface RelightLayer {
   /** Service id (URL of the layer document). */
   readonly id: string;
   readonly layerType: LayerType;
-  /** `lrgb` or `rgb` for PTM; `rgb` for an image layer. */
+  /** `lrgb` or `rgb` for PTM; `rgb` for the other types. */
   readonly colorspace: PtmColorspace;
   readonly width: number;
   readonly height: number;
   readonly planes: readonly PlaneGroup[];
+  /** HSH: 4, 9 or 16; 0 for the other types. */
+  readonly terms: number;
+  /** svbrdf: gloss range `[αmin, αmax]`. */
+  readonly glossLimits: readonly [number, number];
+  /** svbrdf: encoding of kd and ks. */
+  readonly inputColorSpace: InputColorSpace;
 }
 
-/** Channel names the contract prescribes, per layer type and colour space, group by group. */
-export function expectedChannels(layerType: LayerType, colorspace: PtmColorspace): string[][] {
+/**
+ * Channel names the contract prescribes for PTM, HSH and RGB image layers, group by group.
+ * (svbrdf groups are any subset of {@link SVBRDF_MAPS}; a single-band image layer is `[['Y']]`.)
+ */
+export function expectedChannels(layerType: LayerType, colorspace: PtmColorspace, terms = 0): string[][] {
   if (layerType === 'image') {
     return [['R', 'G', 'B']];
+  }
+  if (layerType === 'hsh') {
+    return Array.from({ length: terms }, (_, k) => [`R${k}`, `G${k}`, `B${k}`]);
+  }
+  if (layerType === 'svbrdf') {
+    return Object.values(SVBRDF_MAPS).map((c) => [...c]);
   }
   if (colorspace === 'lrgb') {
     return [['L0', 'L1', 'L2'], ['L3', 'L4', 'L5'], ['R', 'G', 'B']];
@@ -56,15 +90,28 @@ export function expectedChannels(layerType: LayerType, colorspace: PtmColorspace
   return groups;
 }
 
+/**
+ * Index of each svbrdf map's plane group in `layer.planes`, or -1 when the map is absent.
+ */
+export function svbrdfMapIndices(layer: Pick<RelightLayer, 'planes'>): Record<SvbrdfMap, number> {
+  const out = { normals: -1, kd: -1, ks: -1, gloss: -1, depth: -1 };
+  for (const map of Object.keys(SVBRDF_MAPS) as SvbrdfMap[]) {
+    const want: readonly string[] = SVBRDF_MAPS[map];
+    out[map] = layer.planes.findIndex((p) => p.channels.length === want.length
+      && p.channels.every((c, i) => c === want[i]));
+  }
+  return out;
+}
+
 function isRecord(x: unknown): x is Record<string, unknown> {
   return typeof x === 'object' && x !== null && !Array.isArray(x);
 }
 
-function triple(x: unknown, what: string): [number, number, number] {
-  if (!Array.isArray(x) || x.length !== 3 || !x.every((v) => typeof v === 'number' && Number.isFinite(v))) {
-    throw new RelightServiceError(`${what} must be an array of 3 finite numbers`);
+function numbers(x: unknown, n: number, what: string): number[] {
+  if (!Array.isArray(x) || x.length !== n || !x.every((v) => typeof v === 'number' && Number.isFinite(v))) {
+    throw new RelightServiceError(`${what} must be an array of ${n} finite number${n === 1 ? '' : 's'}`);
   }
-  return [x[0] as number, x[1] as number, x[2] as number];
+  return x as number[];
 }
 
 function positiveInt(x: unknown, what: string): number {
@@ -72,6 +119,80 @@ function positiveInt(x: unknown, what: string): number {
     throw new RelightServiceError(`${what} must be a positive integer, got ${JSON.stringify(x)}`);
   }
   return x;
+}
+
+function parsePlane(p: unknown, i: number): PlaneGroup {
+  if (!isRecord(p) || !isRecord(p.service) || typeof p.service.id !== 'string' || p.service.id === '') {
+    throw new RelightServiceError(`plane ${i}: missing service.id`);
+  }
+  const channels = p.channels;
+  if (!Array.isArray(channels) || (channels.length !== 1 && channels.length !== 3)
+    || !channels.every((c) => typeof c === 'string')) {
+    throw new RelightServiceError(`plane ${i}: channels must be 1 or 3 names, got ${JSON.stringify(channels)}`);
+  }
+  const format = p.format ?? 'png';
+  if (typeof format !== 'string') {
+    throw new RelightServiceError(`plane ${i}: format must be a string`);
+  }
+  const n = channels.length;
+  return {
+    serviceId: p.service.id.replace(/\/+$/, ''),
+    format,
+    channels: channels,
+    scale: numbers(p.scale, n, `plane ${i}: scale`),
+    bias: numbers(p.bias, n, `plane ${i}: bias`),
+  };
+}
+
+const sameNames = (a: readonly string[], b: readonly string[]): boolean =>
+  a.length === b.length && a.every((c, k) => c === b[k]);
+
+/** Check the plane groups' channel names against the layer type's layout. */
+function checkChannels(layerType: LayerType, colorspace: PtmColorspace, terms: number,
+  planes: readonly PlaneGroup[]): void {
+  if (layerType === 'svbrdf') {
+    const seen = new Set<string>();
+    planes.forEach((p, i) => {
+      const map = (Object.keys(SVBRDF_MAPS) as SvbrdfMap[]).find((m) => sameNames(p.channels, SVBRDF_MAPS[m]));
+      if (!map) {
+        throw new RelightServiceError(`plane ${i}: ${JSON.stringify(p.channels)} is not an svbrdf map `
+          + `(${Object.values(SVBRDF_MAPS).map((c) => JSON.stringify(c)).join(', ')})`);
+      }
+      if (seen.has(map)) {
+        throw new RelightServiceError(`plane ${i}: the ${map} map is given twice`);
+      }
+      seen.add(map);
+    });
+    if (planes.length === 0) {
+      throw new RelightServiceError('an svbrdf layer needs at least one map');
+    }
+    return;
+  }
+  if (layerType === 'image' && planes.length === 1 && sameNames(planes[0]?.channels ?? [], ['Y'])) {
+    return;
+  }
+  const expected = expectedChannels(layerType, colorspace, terms);
+  const kind = layerType === 'ptm' ? `ptm/${colorspace}` : layerType === 'hsh' ? `hsh${terms}` : layerType;
+  if (planes.length !== expected.length) {
+    throw new RelightServiceError(`${kind} needs ${expected.length} plane groups, got ${planes.length}`);
+  }
+  planes.forEach((p, i) => {
+    const want = expected[i] ?? [];
+    if (!sameNames(p.channels, want)) {
+      throw new RelightServiceError(`plane ${i}: channels must be ${JSON.stringify(want)}, got ${JSON.stringify(p.channels)}`);
+    }
+  });
+}
+
+function parseGlossLimits(x: unknown): readonly [number, number] {
+  if (x === undefined) {
+    return DEFAULT_GLOSS_LIMITS;
+  }
+  const [lo, hi] = numbers(x, 2, 'glossLimits') as [number, number];
+  if (!(lo > 0 && lo <= hi)) {
+    throw new RelightServiceError(`glossLimits must satisfy 0 < min <= max, got ${JSON.stringify(x)}`);
+  }
+  return [lo, hi];
 }
 
 /**
@@ -92,54 +213,41 @@ export function parseRelightService(block: unknown): RelightLayer {
   }
   const id = typeof block.id === 'string' ? block.id : '';
   const layerType = block.layerType;
-  if (layerType !== 'ptm' && layerType !== 'image') {
+  if (layerType !== 'ptm' && layerType !== 'hsh' && layerType !== 'svbrdf' && layerType !== 'image') {
     throw new RelightServiceError(`unsupported layerType ${JSON.stringify(layerType)}`);
   }
   const colorspace = block.colorspace ?? 'rgb';
   if (colorspace !== 'lrgb' && colorspace !== 'rgb') {
     throw new RelightServiceError(`unsupported colorspace ${JSON.stringify(colorspace)}`);
   }
-  if (layerType === 'image' && colorspace !== 'rgb') {
-    throw new RelightServiceError('an image layer must have colorspace rgb');
+  if (layerType !== 'ptm' && colorspace !== 'rgb') {
+    throw new RelightServiceError(`an ${layerType} layer must have colorspace rgb`);
+  }
+  let terms = 0;
+  if (layerType === 'hsh') {
+    terms = block.terms as number;
+    if (!(HSH_TERM_COUNTS as readonly unknown[]).includes(terms)) {
+      throw new RelightServiceError(`hsh terms must be 4, 9 or 16, got ${JSON.stringify(block.terms)}`);
+    }
   }
   const basis = BASES[layerType];
-  if (basis) {
+  if (basis && layerType === 'ptm') {
     const given = block.basis;
     if (!Array.isArray(given) || given.length !== basis.terms.length || given.some((t, i) => t !== basis.terms[i])) {
       throw new RelightServiceError(`basis must be ${JSON.stringify(basis.terms)}, got ${JSON.stringify(given)}`);
     }
   }
+  const inputColorSpace = block.inputColorSpace ?? 'linear';
+  if (inputColorSpace !== 'linear' && inputColorSpace !== 'srgb') {
+    throw new RelightServiceError(`inputColorSpace must be "linear" or "srgb", got ${JSON.stringify(inputColorSpace)}`);
+  }
+  const glossLimits = parseGlossLimits(block.glossLimits);
   const width = positiveInt(block.width, 'width');
   const height = positiveInt(block.height, 'height');
   if (!Array.isArray(block.planes)) {
     throw new RelightServiceError('planes must be an array');
   }
-  const expected = expectedChannels(layerType, colorspace);
-  if (block.planes.length !== expected.length) {
-    throw new RelightServiceError(
-      `${layerType}/${colorspace} needs ${expected.length} plane groups, got ${block.planes.length}`,
-    );
-  }
-  const planes = block.planes.map((p: unknown, i: number): PlaneGroup => {
-    if (!isRecord(p) || !isRecord(p.service) || typeof p.service.id !== 'string' || p.service.id === '') {
-      throw new RelightServiceError(`plane ${i}: missing service.id`);
-    }
-    const channels = p.channels;
-    const want = expected[i] ?? [];
-    if (!Array.isArray(channels) || channels.length !== 3 || channels.some((c, k) => c !== want[k])) {
-      throw new RelightServiceError(`plane ${i}: channels must be ${JSON.stringify(want)}, got ${JSON.stringify(channels)}`);
-    }
-    const format = p.format ?? 'png';
-    if (typeof format !== 'string') {
-      throw new RelightServiceError(`plane ${i}: format must be a string`);
-    }
-    return {
-      serviceId: p.service.id.replace(/\/+$/, ''),
-      format,
-      channels: [want[0] ?? '', want[1] ?? '', want[2] ?? ''],
-      scale: triple(p.scale, `plane ${i}: scale`),
-      bias: triple(p.bias, `plane ${i}: bias`),
-    };
-  });
-  return { id, layerType, colorspace, width, height, planes };
+  const planes = block.planes.map(parsePlane);
+  checkChannels(layerType, colorspace, terms, planes);
+  return { id, layerType, colorspace, width, height, planes, terms, glossLimits, inputColorSpace };
 }

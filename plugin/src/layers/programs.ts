@@ -1,21 +1,32 @@
 /**
- * Layer programs: one twgl program per layer kind, chosen from a table.
+ * Layer programs: one fragment shader per layer kind × render mode × stage, built from the shared
+ * prelude, colour helpers and mode `main()` plus the layer's functions, compiled on first use.
  */
 import * as twgl from 'twgl.js';
+import { COLOR_GLSL } from '../gl/glsl/color.glsl';
+import { MODE_DEFINES, MODES_MAIN_GLSL, STAGE, type Stage } from '../gl/glsl/modes.glsl';
+import { planesPrelude } from '../gl/glsl/planes.glsl';
 import { QUAD_VERTEX_SHADER } from '../gl/glsl/quad.vert';
-import type { RelightLayer } from '../iiif/relight-service';
-import { IMAGE_FRAGMENT_SHADER } from './image/image.frag';
-import { PTM_LRGB_FRAGMENT_SHADER, PTM_RGB_FRAGMENT_SHADER } from './ptm/ptm.frag';
 import { LanternaError } from '../iiif/errors';
+import type { RelightLayer } from '../iiif/relight-service';
+import { RENDER_MODES, type RenderMode } from '../render/modes';
+import { HSH_FRAGMENT_BODY } from './hsh/hsh.frag';
+import { IMAGE_FRAGMENT_BODY } from './image/image.frag';
+import { ptmFragmentBody } from './ptm/ptm.frag';
+import { SVBRDF_FRAGMENT_BODY } from './svbrdf/svbrdf.frag';
 
-/** Program kinds, one per fragment shader. */
-export type ProgramKind = 'ptm-lrgb' | 'ptm-rgb' | 'image';
+/** Program kinds: one set of layer functions (and compile-time constants) each. */
+export type ProgramKind = 'ptm-lrgb' | 'ptm-rgb' | 'hsh4' | 'hsh9' | 'hsh16' | 'svbrdf' | 'image';
 
-/** Fragment shader source per program kind. */
-export const FRAGMENT_SHADERS: Readonly<Record<ProgramKind, string>> = {
-  'ptm-lrgb': PTM_LRGB_FRAGMENT_SHADER,
-  'ptm-rgb': PTM_RGB_FRAGMENT_SHADER,
-  image: IMAGE_FRAGMENT_SHADER,
+/** Layer functions and extra defines per program kind. */
+const KINDS: Readonly<Record<ProgramKind, { body: string; defines?: Record<string, number> }>> = {
+  'ptm-lrgb': { body: ptmFragmentBody('lrgb') },
+  'ptm-rgb': { body: ptmFragmentBody('rgb') },
+  hsh4: { body: HSH_FRAGMENT_BODY, defines: { TERMS: 4 } },
+  hsh9: { body: HSH_FRAGMENT_BODY, defines: { TERMS: 9 } },
+  hsh16: { body: HSH_FRAGMENT_BODY, defines: { TERMS: 16 } },
+  svbrdf: { body: SVBRDF_FRAGMENT_BODY },
+  image: { body: IMAGE_FRAGMENT_BODY },
 };
 
 /** A shader failed to compile or link. */
@@ -23,28 +34,75 @@ export class ShaderError extends LanternaError {}
 
 /** The program kind that draws a layer. */
 export function programKind(layer: RelightLayer): ProgramKind {
-  if (layer.layerType === 'image') {
-    return 'image';
+  switch (layer.layerType) {
+    case 'ptm':
+      return layer.colorspace === 'lrgb' ? 'ptm-lrgb' : 'ptm-rgb';
+    case 'hsh':
+      return `hsh${layer.terms}` as ProgramKind;
+    case 'svbrdf':
+      return 'svbrdf';
+    default:
+      return 'image';
   }
-  return layer.colorspace === 'lrgb' ? 'ptm-lrgb' : 'ptm-rgb';
+}
+
+/** Fragment shader source of a layer kind in a render mode and stage. */
+export function fragmentShaderSource(kind: ProgramKind, mode: RenderMode, stage: Stage): string {
+  const { body, defines } = KINDS[kind];
+  const all = {
+    ...MODE_DEFINES,
+    ...defines,
+    MODE: RENDER_MODES.indexOf(mode),
+    STAGE: STAGE[stage],
+  };
+  return planesPrelude(`lanterna-${kind}-${mode}-${stage}`, all) + COLOR_GLSL + body + MODES_MAIN_GLSL;
 }
 
 /**
- * Compile every layer program.
+ * Compile a program from a vertex and a fragment shader.
  *
- * @throws {@link ShaderError} if one fails
+ * @throws {@link ShaderError} if it fails
  */
-export function createPrograms(gl: WebGL2RenderingContext): Record<ProgramKind, twgl.ProgramInfo> {
-  const out: Partial<Record<ProgramKind, twgl.ProgramInfo>> = {};
-  for (const kind of Object.keys(FRAGMENT_SHADERS) as ProgramKind[]) {
-    const errors: string[] = [];
-    const info = twgl.createProgramInfo(gl, [QUAD_VERTEX_SHADER, FRAGMENT_SHADERS[kind]], {
-      errorCallback: (msg: string) => { errors.push(msg); },
-    }) as twgl.ProgramInfo | null;
-    if (!info) {
-      throw new ShaderError(`program ${kind} failed: ${errors.join('\n')}`);
-    }
-    out[kind] = info;
+export function compileProgram(gl: WebGL2RenderingContext, vertex: string, fragment: string, name: string):
+  twgl.ProgramInfo {
+  const errors: string[] = [];
+  const info = twgl.createProgramInfo(gl, [vertex, fragment], {
+    errorCallback: (msg: string) => { errors.push(msg); },
+  }) as twgl.ProgramInfo | null;
+  if (!info) {
+    throw new ShaderError(`program ${name} failed: ${errors.join('\n')}`);
   }
-  return out as Record<ProgramKind, twgl.ProgramInfo>;
+  return info;
+}
+
+/** Layer programs of one GL context, compiled on first use. */
+export class ProgramCache {
+  private readonly programs = new Map<string, twgl.ProgramInfo>();
+
+  constructor(private readonly gl: WebGL2RenderingContext) {}
+
+  /**
+   * The program of a layer kind, mode and stage.
+   *
+   * @throws {@link ShaderError} if it does not compile
+   */
+  get(kind: ProgramKind, mode: RenderMode, stage: Stage): twgl.ProgramInfo {
+    const key = `${kind}/${mode}/${stage}`;
+    let info = this.programs.get(key);
+    if (!info) {
+      info = compileProgram(this.gl, QUAD_VERTEX_SHADER, fragmentShaderSource(kind, mode, stage), key);
+      this.programs.set(key, info);
+    }
+    return info;
+  }
+
+  /** Delete every program (the context is being dropped or rebuilt). */
+  clear(): void {
+    if (!this.gl.isContextLost()) {
+      for (const info of this.programs.values()) {
+        this.gl.deleteProgram(info.program);
+      }
+    }
+    this.programs.clear();
+  }
 }

@@ -1,12 +1,11 @@
 /**
- * Plain image layer (contract `layerType: "image"`): one plane group drawn as is.
+ * Plain image layer functions (contract `layerType: "image"`): one plane group drawn as is; a
+ * single-band (`Y`) group decodes as grey, so its three channels already hold Y.
  */
-import { planesPrelude } from '../../gl/glsl/planes.glsl';
-import { OUT_COLOR } from '../../gl/uniforms';
 
-/** Output the dequantised RGB of plane 0, clamped, opaque. */
-export const IMAGE_FRAGMENT_SHADER = `${planesPrelude('lanterna-image')}
-void main() {
-  ${OUT_COLOR} = vec4(clamp(lanterna_plane(0), 0.0, 1.0), 1.0);
-}
+/** Layer functions of an image program. */
+export const IMAGE_FRAGMENT_BODY = /* glsl */ `
+vec3 lt_color() { return lanterna_plane(0); }
+vec3 lt_albedo() { return lt_color(); }
+vec3 lt_achromatic() { return vec3(luma(lt_color())); }
 `;

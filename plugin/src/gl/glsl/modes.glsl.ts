@@ -1,0 +1,88 @@
+/**
+ * Shared fragment `main()`: picks the render mode's formula at compile time (`MODE`, `STAGE`) from
+ * the functions a layer shader defines (`docs/rendering.md`, "Modes and where they apply").
+ *
+ * A layer shader defines, for the modes it supports: `lt_color()` (the colour-mode c, before post),
+ * `lt_normal()`, `lt_albedo()`, `lt_diffuse()`, `lt_achromatic()`, `lt_specular()`,
+ * `lt_diffuse_gain()`, and for `unsharpCoefficients`/`unsharpLuminance` `lt_unsharp_q()` (the
+ * filtered quantity) and `lt_unsharp(q, qbar)`.
+ *
+ * Stages: `STAGE_DIRECT` draws the mode; for the unsharp modes `STAGE_QUANTITY` writes `(q, 1)` into
+ * a float framebuffer (coverage a = 1 where drawn) and `STAGE_COMBINE` reads the box-filtered
+ * `(F(q·a), F(a))` at the same device pixel and combines.
+ */
+import { RENDER_MODES } from '../../render/modes';
+import { OUT_COLOR, U_FILTERED, U_LIGHT, U_PARAM } from '../uniforms';
+
+/** Shader stages. */
+export const STAGE = { direct: 0, quantity: 1, combine: 2 } as const;
+/** A shader stage name. */
+export type Stage = keyof typeof STAGE;
+
+/** `#define MODE_<name> <index>` for every mode, and the stage constants. */
+export const MODE_DEFINES: Readonly<Record<string, number>> = {
+  ...Object.fromEntries(RENDER_MODES.map((m, i) => [`MODE_${m}`, i])),
+  STAGE_DIRECT: STAGE.direct,
+  STAGE_QUANTITY: STAGE.quantity,
+  STAGE_COMBINE: STAGE.combine,
+};
+
+/** GLSL source of `main()`; needs the prelude, {@link COLOR_GLSL} and the layer's functions before it. */
+export const MODES_MAIN_GLSL = /* glsl */ `
+#if STAGE != STAGE_DIRECT
+uniform sampler2D ${U_FILTERED};
+
+vec3 quantity() {
+#if MODE == MODE_unsharpNormals
+  return lt_normal();
+#elif MODE == MODE_unsharpImage
+  return vec3(luma(clamp01(lt_color())), 0.0, 0.0);
+#else
+  return lt_unsharp_q();
+#endif
+}
+#endif
+
+vec3 shade() {
+#if MODE == MODE_color
+  return lt_color();
+#elif MODE == MODE_normals
+  return (lt_normal() + 1.0) * 0.5;
+#elif MODE == MODE_albedo
+  return lt_albedo();
+#elif MODE == MODE_diffuse
+  return lt_diffuse();
+#elif MODE == MODE_achromatic
+  return lt_achromatic();
+#elif MODE == MODE_specular
+  return lt_specular();
+#elif MODE == MODE_diffuseGain
+  return lt_diffuse_gain();
+#elif STAGE == STAGE_COMBINE
+  vec4 f = texelFetch(${U_FILTERED}, ivec2(gl_FragCoord.xy), 0);
+  vec3 q = quantity();
+  vec3 qbar = f.a > 0.0 ? f.rgb / f.a : q;
+  float g = ${U_PARAM.umGain};
+#if MODE == MODE_unsharpNormals
+  vec3 ne = normalize(q + g * (q - qbar));
+  return lt_albedo() * (${U_PARAM.umKd} * clamp(dot(ne, ${U_LIGHT}), 0.0, 1.0) + ${U_PARAM.umEnv})
+    / (${U_PARAM.umKd} + ${U_PARAM.umEnv}) * ${U_PARAM.lightIntensity};
+#elif MODE == MODE_unsharpImage
+  vec3 c0 = clamp01(lt_color());
+  return c0 + g * (q.x - qbar.x);
+#else
+  return lt_unsharp(q, qbar);
+#endif
+#else
+  return vec3(0.0);
+#endif
+}
+
+void main() {
+#if STAGE == STAGE_QUANTITY
+  ${OUT_COLOR} = vec4(quantity(), 1.0);
+#else
+  ${OUT_COLOR} = vec4(lanterna_post(shade()), 1.0);
+#endif
+}
+`;
