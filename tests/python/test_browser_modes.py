@@ -58,7 +58,7 @@ PARAMS = {  # one non-default set per mode
     "normals": {"gamma": 0.7, "brightness": 0.05},
     "albedo": {"brightness": 0.1, "gamma": 1.2},
     "diffuse": {"lightIntensity": 1.4},
-    "achromatic": {"lightIntensity": 0.7, "gamma": 1.5},
+    "achromatic": {"lightIntensity": 1.8, "gamma": 1.5},  # channels > 1: luma of unclamped c
     "specular": {"specKd": 0.6, "specKs": 0.3, "specExponent": 20},
     "diffuseGain": {"diffuseGain": 4.0},
     "unsharpNormals": {"umGain": 3.0, "umKd": 0.8, "umEnv": 1.2},
