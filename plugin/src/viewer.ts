@@ -5,8 +5,8 @@
 import OpenSeadragon from 'openseadragon';
 import { RelightDrawer, type PixelData } from './drawer/relight-drawer';
 import { LanternaError } from './iiif/errors';
-import { loadLayer, loadRelightManifest, type InfoCache, type LoadedLayer } from './iiif/load';
-import type { ManifestInfo, ManifestLayer } from './iiif/manifest';
+import { fetchJson, loadLayer, type InfoCache, type LoadedLayer } from './iiif/load';
+import { parseManifest, type ManifestInfo, type ManifestLayer } from './iiif/manifest';
 import type { LayerType } from './iiif/relight-service';
 import { lightFromPointer, lightFromProjection, type Light } from './math/light';
 import { applicableModes, DEFAULT_RENDER_MODE, isRenderMode, type RenderMode } from './render/modes';
@@ -25,6 +25,8 @@ export interface CreateViewerOptions {
   light?: readonly [number, number];
   /** What a plain drag does. @default 'light' */
   mode?: DragMode;
+  /** Id of the layer shown first. @default the manifest's first layer */
+  layer?: string;
   /** Show the light widget (a draggable, keyboard-controlled disc). @default true */
   lightIndicator?: boolean;
   /** Extra OpenSeadragon options (the drawer, navigator and tile sources are set by Lanterna). */
@@ -79,6 +81,8 @@ export interface LanternaViewer {
   setRenderParams(params: Partial<RenderParams>): void;
   /** The render parameters. */
   getRenderParams(): RenderParams;
+  /** Set every render parameter back to its default. */
+  resetRenderParams(): void;
   /** Call `listener` after any change of light, layer, mode or parameters; returns an unsubscribe function. */
   onChange(listener: () => void): () => void;
   /** Fit the rectangle (x, y, w, h) in image pixels into the viewer, immediately. */
@@ -245,14 +249,17 @@ export function createViewer(options: CreateViewerOptions): LanternaViewer {
   };
 
   const ready = (async () => {
-    const loaded = await loadRelightManifest(options.manifest, options.fetchInit, infoCache);
-    manifest = loaded;
-    for (const info of loaded.layers) {
+    const parsed = parseManifest(await fetchJson(options.manifest, options.fetchInit));
+    manifest = parsed;
+    for (const info of parsed.layers) {
       slots.set(info.id, { info });
     }
-    const first = slots.get(loaded.first.id) as LayerSlot;
-    first.loaded = loaded.first;
-    await activate(first);
+    const initialId = options.layer ?? parsed.layers[0]?.id ?? '';
+    const initial = slots.get(initialId);
+    if (!initial) {
+      throw new UnknownLayerError(`no layer ${JSON.stringify(initialId)} (layers: ${[...slots.keys()].join(', ')})`);
+    }
+    await activate(initial);
     applyLight();
   })();
   // Avoid an unhandled rejection if the caller never awaits `ready`.
@@ -316,6 +323,11 @@ export function createViewer(options: CreateViewerOptions): LanternaViewer {
       changed();
     },
     getRenderParams: () => params,
+    resetRenderParams() {
+      params = DEFAULT_RENDER_PARAMS;
+      drawer().setRenderParams(params);
+      changed();
+    },
     onChange(listener: () => void) {
       listeners.add(listener);
       return () => { listeners.delete(listener); };

@@ -8,8 +8,9 @@
 //                    "layer": "ptm", "mode": "specular", "params": {"specExponent": 40}}],
 //         "screenshot": "/abs/optional.png", "timeoutMs": 60000}
 //
-// For each shot: switch to `layer` (a layer id), set the render `mode` and the render `params`
-// (each optional: when absent the current layer, mode and parameters stay), then set the light,
+// For each shot: switch to `layer` (a layer id), set the render `mode`, and set the render
+// parameters to the defaults overridden by `params` (each optional: when absent the current layer,
+// mode and parameters stay), then set the light,
 // fit the image-pixel region to the viewport, wait until every tile is loaded and drawn, read the frame back (RGBA, rows top-down) and write the raw bytes to `out`
 // and {width, height} to `out + ".json"`. One JSON line per shot goes to stdout. Exits non-zero on
 // a page error, a console error, or a step taking longer than timeoutMs (default 60 s).
@@ -96,6 +97,7 @@ async function main() {
           l.setRenderMode(mode);
         }
         if (params !== undefined) {
+          l.resetRenderParams();
           l.setRenderParams(params);
         }
         l.setLight(light[0], light[1]);

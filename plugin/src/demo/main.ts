@@ -1,7 +1,8 @@
 /**
- * The viewer page: `index.html?manifest=URL`. Exposes the viewer as `window.lanterna`.
+ * The viewer page: `index.html?manifest=URL[&layer=ID][&mode=MODE]`. Exposes the viewer as
+ * `window.lanterna`.
  */
-import { createControls, createViewer, type LanternaViewer } from '../index';
+import { createControls, createViewer, type LanternaViewer, type RenderMode } from '../index';
 
 declare global {
   interface Window {
@@ -23,7 +24,9 @@ const manifest = params.get('manifest');
 if (!manifest) {
   showError('No manifest given: open this page as …/viewer/?manifest=URL_OF_MANIFEST.json');
 } else {
-  const lanterna = createViewer({ element: 'viewer', manifest: new URL(manifest, window.location.href).href });
+  const layer = params.get('layer') ?? undefined;
+  const mode = params.get('mode');
+  const lanterna = createViewer({ element: 'viewer', manifest: new URL(manifest, window.location.href).href, layer });
   window.lanterna = lanterna;
   const label = document.getElementById('label');
   const modeButton = document.getElementById('mode');
@@ -42,9 +45,12 @@ if (!manifest) {
       label.textContent = text;
     }
     document.title = text ? `${text} · Lanterna` : 'Lanterna viewer';
+    if (mode !== null) {
+      lanterna.setRenderMode(mode as RenderMode); // throws RenderModeError for an unknown mode
+    }
     if (panel) {
       createControls(lanterna, panel, showError);
       panel.hidden = false;
     }
-  }, showError);
+  }).catch(showError);
 }

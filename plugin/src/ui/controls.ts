@@ -107,11 +107,7 @@ export function createControls(lanterna: LanternaViewer, parent: HTMLElement,
       onError(error instanceof LanternaError ? error : new LanternaError(String(error)));
     }
   });
-  reset.addEventListener('click', () => {
-    lanterna.setRenderParams(Object.fromEntries(
-      (Object.keys(PARAM_SPECS) as RenderParamName[]).map((n) => [n, PARAM_SPECS[n].default]),
-    ));
-  });
+  reset.addEventListener('click', () => { lanterna.resetRenderParams(); });
   const unsubscribe = lanterna.onChange(refresh);
   refresh();
   return {
