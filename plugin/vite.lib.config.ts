@@ -14,6 +14,8 @@ export default defineConfig({
     },
     rollupOptions: {
       external: ['openseadragon', 'twgl.js'],
+      // Error classes name themselves from `new.target.name`: keep class names through minification.
+      output: { keepNames: true },
     },
   },
 });

@@ -12,5 +12,7 @@ export default defineConfig({
     emptyOutDir: true,
     sourcemap: true,
     chunkSizeWarningLimit: 1024,
+    // Error classes name themselves from `new.target.name`: keep class names through minification.
+    rollupOptions: { output: { keepNames: true } },
   },
 });

@@ -9,7 +9,7 @@ import { fetchJson, loadLayer, type InfoCache, type LoadedLayer } from './iiif/l
 import { parseManifest, type ManifestInfo, type ManifestLayer } from './iiif/manifest';
 import type { LayerType } from './iiif/relight-service';
 import { lightFromPointer, lightFromProjection, type Light } from './math/light';
-import { applicableModes, DEFAULT_RENDER_MODE, isRenderMode, type RenderMode } from './render/modes';
+import { applicableModes, DEFAULT_RENDER_MODE, isRenderMode, shadingClass, type RenderMode } from './render/modes';
 import { DEFAULT_RENDER_PARAMS, mergeParams, type RenderParams } from './render/params';
 import { BundleTileSource } from './tiles/bundle-tile-source';
 import { attachInteraction, type DragMode } from './ui/interaction';
@@ -245,6 +245,7 @@ export function createViewer(options: CreateViewerOptions): LanternaViewer {
       drawer().setRenderMode(renderMode);
     }
     drawer().prepare(slot.info.layer, renderMode);
+    widget?.setLit(shadingClass(slot.info.layer) !== 'flat');
     changed();
   };
 

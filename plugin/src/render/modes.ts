@@ -30,10 +30,10 @@ export const MODE_LABELS: Readonly<Record<RenderMode, string>> = {
   achromatic: 'Achromatic',
   specular: 'Specular enhancement',
   diffuseGain: 'Diffuse gain',
-  unsharpNormals: 'Unsharp masking: normals',
-  unsharpCoefficients: 'Unsharp masking: coefficients',
-  unsharpLuminance: 'Unsharp masking: luminance',
-  unsharpImage: 'Unsharp masking: image',
+  unsharpNormals: 'Unsharp normals',
+  unsharpCoefficients: 'Unsharp coefficients',
+  unsharpLuminance: 'Unsharp luminance',
+  unsharpImage: 'Unsharp image',
 };
 
 /** The contract's applicability table: the shading classes each mode applies to. */

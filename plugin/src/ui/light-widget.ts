@@ -9,6 +9,8 @@ export interface LightWidget {
   readonly element: HTMLElement;
   /** Show a light (call when it changes elsewhere). */
   update(light: Light): void;
+  /** Dim the widget when the shown layer does not depend on the light. */
+  setLit(lit: boolean): void;
   destroy(): void;
 }
 
@@ -106,6 +108,11 @@ export function createLightWidget(parent: HTMLElement, options: LightWidgetOptio
   return {
     element: disc,
     update,
+    setLit: (lit: boolean) => {
+      disc.style.opacity = lit ? '1' : '0.45';
+      disc.title = lit ? 'Light direction: drag here, or focus and use the arrow keys'
+        : 'This layer is not lit: the light changes nothing';
+    },
     destroy: () => { disc.remove(); },
   };
 }
