@@ -168,7 +168,7 @@ class ModeShot:
 
 
 def full_params(overrides: dict[str, float]) -> dict[str, float]:
-    """Every parameter (the viewer merges updates into its current set), defaults overridden."""
+    """Every parameter, defaults overridden: sent in full, so no shot inherits another's."""
     return {name: spec[0] for name, spec in PARAMETERS.items()} | overrides
 
 
