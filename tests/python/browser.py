@@ -19,11 +19,25 @@ CHROMIUM = Path("/usr/bin/chromium")
 
 @dataclass
 class Shot:
-    """One rendering: a light and the image-pixel rectangle fitted to the viewport."""
+    """One rendering: a light and the image-pixel rectangle fitted to the viewport.
+
+    ``layer``, ``mode`` and ``params`` (all render parameters; unlisted ones take their defaults)
+    select what is drawn; ``None`` keeps the viewer's current choice.
+    """
 
     light: tuple[float, float]
     region: tuple[int, int, int, int]
     out: Path
+    layer: str | None = None
+    mode: str | None = None
+    params: dict[str, float] | None = None
+
+    def spec(self) -> dict[str, object]:
+        """The shot as render.mjs reads it."""
+        extra = {k: getattr(self, k) for k in ("layer", "mode", "params")
+                 if getattr(self, k) is not None}
+        return {"light": list(self.light), "region": list(self.region), "out": str(self.out),
+                **extra}
 
 
 def require_browser() -> None:
@@ -42,18 +56,18 @@ def render(url: str, shots: list[Shot], viewport: tuple[int, int] = (640, 480),
            screenshot: Path | None = None, timeout: float = 180) -> list[npt.NDArray[np.uint8]]:
     """Render ``shots`` of the viewer page at ``url``; return the RGBA frames (H, W, 4)."""
     require_browser()
-    spec = {
+    spec: dict[str, object] = {
         "url": url,
         "viewport": {"width": viewport[0], "height": viewport[1]},
-        "shots": [{"light": list(s.light), "region": list(s.region), "out": str(s.out)}
-                  for s in shots],
+        "timeoutMs": int(timeout * 1000),
+        "shots": [s.spec() for s in shots],
     }
     if screenshot is not None:
         spec["screenshot"] = str(screenshot)
     spec_path = shots[0].out.parent / "spec.json" if shots else Path("spec.json")
     spec_path.write_text(json.dumps(spec))
     proc = subprocess.run(["node", str(RENDER), str(spec_path)], capture_output=True, text=True,
-                          timeout=timeout, cwd=REPO)
+                          timeout=timeout * 5, cwd=REPO)
     if proc.returncode != 0:
         raise AssertionError(
             f"render.mjs failed ({proc.returncode}):\n{proc.stdout}\n{proc.stderr}")

@@ -10,8 +10,6 @@ screen-space filters). The regions lie inside the image and span tile seams.
 
 from __future__ import annotations
 
-import json
-import subprocess
 from collections.abc import Iterator
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -41,7 +39,7 @@ from lanterna.tiler.render import (
     render,
 )
 
-from .browser import RENDER, REPO, require_browser
+from . import browser
 from .conftest import LiveServer
 
 pytestmark = pytest.mark.browser
@@ -172,27 +170,6 @@ def full_params(overrides: dict[str, float]) -> dict[str, float]:
     return {name: spec[0] for name, spec in PARAMETERS.items()} | overrides
 
 
-def render_frames(url: str, shots: list[ModeShot]) -> list[npt.NDArray[np.uint8]]:
-    """Render ``shots`` in one Chromium run of tests/browser/render.mjs; RGBA frames."""
-    require_browser()
-    spec = {"url": url, "viewport": {"width": VIEW[0], "height": VIEW[1]}, "timeoutMs": 120000,
-            "shots": [{"light": list(s.light), "region": list(s.region), "out": str(s.out),
-                       "layer": s.layer, "mode": s.mode, "params": full_params(s.params)}
-                      for s in shots]}
-    spec_path = shots[0].out.parent / "spec.json"
-    spec_path.write_text(json.dumps(spec))
-    proc = subprocess.run(["node", str(RENDER), str(spec_path)], capture_output=True, text=True,
-                          timeout=900, cwd=REPO)
-    if proc.returncode != 0:
-        raise AssertionError(f"render.mjs failed ({proc.returncode}):\n{proc.stderr[-4000:]}")
-    frames = []
-    for s in shots:
-        meta = json.loads(Path(str(s.out) + ".json").read_text())
-        raw = np.frombuffer(s.out.read_bytes(), np.uint8)
-        frames.append(raw.reshape(meta["height"], meta["width"], 4))
-    return frames
-
-
 @dataclass
 class Run:
     """Frames and references of every shot, by (layer, mode)."""
@@ -216,7 +193,9 @@ def run(tmp_path_factory: pytest.TempPathFactory) -> Iterator[Run]:
     server = LiveServer(tmp)
     try:
         url = f"{server.url}/viewer/?manifest={server.url}/datasets/modes/manifest.json"
-        frames = render_frames(url, shots)
+        frames = browser.render(url, [browser.Shot(s.light, s.region, s.out, s.layer, s.mode,
+                                                   full_params(s.params)) for s in shots],
+                                viewport=VIEW)
     finally:
         server.close()
     channels = {(lid, f): level_channels(tmp / "modes", block, f, ZOOMS[f] + VIEW)
