@@ -21,7 +21,13 @@ import numpy.typing as npt
 from PIL import Image, ImageDraw
 
 from .dataset import DEFAULT_BASE_URL, DatasetWriter
-from .layers import add_hsh_layer, add_image_layer, add_ptm_layer, add_svbrdf_layer, encode_normals
+from .layers import (
+    add_hsh_layer,
+    add_image_layer,
+    add_ptm_layer,
+    add_svbrdf_layer,
+    encode_normals,
+)
 from .pyramid import vips_from_array
 
 DEMO_SIZE = (1536, 1152)

@@ -1,7 +1,9 @@
 """Add layers of every type to a dataset: PTM, HSH, shape + material (SVBRDF) and plain images.
 
-Each ``add_*_layer`` tiles the layer's plane groups (three channels per IIIF image, the layer's own
-bytes where it has them), writes a preview image for the manifest body and registers the layer
+Every ``add_*_layer`` turns its input into :class:`~lanterna.tiler.planes.PlaneGroup` s (three
+channels per IIIF image, the source's own bytes where it has them), and :func:`add_planes_layer`
+tiles them, renders the manifest's preview image with the reference renderer
+(:mod:`lanterna.tiler.render`, colour mode, overhead light) and registers the layer
 (schema: docs/dataset-format.md, maths: docs/rendering.md).
 """
 
@@ -14,18 +16,9 @@ import numpy.typing as npt
 import pyvips
 
 from .dataset import DatasetWriter
-from .hsh_basis import hsh_weights
 from .hsh_model import Hsh
-from .planes import PlaneLayer
-from .ptm_model import PTM_BASIS, Ptm, ptm_weights
-
-#: Default BRDF of a shape layer without material (docs/rendering.md, svbrdf).
-DEFAULT_KD, DEFAULT_KS, DEFAULT_ALPHA = 0.7, 0.15, 0.25
-
-
-def _plane(svc: dict[str, Any], fmt: str, channels: list[str], scale: list[float],
-           bias: list[float]) -> dict[str, Any]:
-    return {"service": svc, "format": fmt, "channels": channels, "scale": scale, "bias": bias}
+from .planes import PlaneGroup, PlaneLayer
+from .ptm_model import Ptm
 
 
 def _to_bytes(display: npt.NDArray[np.floating]) -> npt.NDArray[np.uint8]:
@@ -33,40 +26,57 @@ def _to_bytes(display: npt.NDArray[np.floating]) -> npt.NDArray[np.uint8]:
     return out
 
 
+def add_planes_layer(ds: DatasetWriter, layer: PlaneLayer, *, layer_id: str, label: str,
+                     share: dict[int, str] | None = None) -> dict[str, Any]:
+    """Tile the plane groups of ``layer`` and add it, with a preview, to the dataset.
+
+    ``share`` maps a group index to a share key: groups with the same key across layers are
+    stored once (e.g. one normal map used by several material layers).
+    """
+    from .render import render
+
+    planes = []
+    for i, group in enumerate(layer.groups):
+        svc = ds.add_image(f"{layer_id}_{layer.group_names[i]}", np.ascontiguousarray(group.data),
+                           fmt="png", share_key=(share or {}).get(i))
+        planes.append({"service": svc, "format": "png", "channels": list(group.channels),
+                       "scale": list(group.scale), "bias": list(group.bias)})
+    block = {"layerType": layer.layer_type, **layer.fields(), "planes": planes}
+    preview = render(block, layer.channels(), (0.0, 0.0), "color")
+    ds.add_image(f"{layer_id}_preview", _to_bytes(preview), fmt="jpg")
+    out = {"id": layer_id, "label": label, "body": f"{layer_id}_preview", **block}
+    ds.add_layer(out)
+    return out
+
+
 def add_ptm_layer(ds: DatasetWriter, ptm: Ptm, *, layer_id: str = "ptm",
                   label: str = "PTM") -> dict[str, Any]:
-    """Tile the planes of ``ptm`` (3 per image, the PTM's own bytes) and add it as a layer.
+    """Add a PTM layer whose stored texels are exactly the PTM's bytes.
 
     The file's ``a = (byte − b)·s`` in 0–255 units becomes ``(t − b/255)·s`` with ``t`` in
-    0–1 (docs/dataset-format.md), so the stored texels are exactly the PTM's bytes.
+    0–1 (docs/dataset-format.md).
     """
     scale = [float(s) for s in ptm.scale]
     bias = [float(b) / 255.0 for b in ptm.bias]
-    planes: list[dict[str, Any]] = []
-
-    def group(ident: str, data: npt.NDArray[np.uint8], channels: list[str], sc: list[float],
-              bi: list[float]) -> None:
-        svc = ds.add_image(ident, np.ascontiguousarray(data), fmt="png")
-        planes.append(_plane(svc, "png", channels, sc, bi))
-
+    groups, names = [], []
     if ptm.colorspace == "lrgb":
         assert ptm.rgb is not None
         for g in range(2):
             k = slice(3 * g, 3 * g + 3)
-            group(f"{layer_id}_c{g}", ptm.coefficients[..., k],
-                  [f"L{i}" for i in range(3 * g, 3 * g + 3)], scale[k], bias[k])
-        group(f"{layer_id}_color", ptm.rgb, ["R", "G", "B"], [1.0] * 3, [0.0] * 3)
+            groups.append(PlaneGroup([f"L{i}" for i in range(3 * g, 3 * g + 3)],
+                                     ptm.coefficients[..., k], scale[k], bias[k]))
+            names.append(f"c{g}")
+        groups.append(PlaneGroup(["R", "G", "B"], ptm.rgb, [1.0] * 3, [0.0] * 3))
+        names.append("color")
     else:
         for c, name in enumerate("RGB"):
             for g in range(2):
                 k = slice(3 * g, 3 * g + 3)
-                group(f"{layer_id}_{name.lower()}{g}", ptm.coefficients[:, :, c, k],
-                      [f"{name}{i}" for i in range(3 * g, 3 * g + 3)], scale[k], bias[k])
-    ds.add_image(f"{layer_id}_preview", _to_bytes(ptm.relight(0.0, 0.0)), fmt="jpg")
-    layer = {"id": layer_id, "label": label, "body": f"{layer_id}_preview", "layerType": "ptm",
-             "colorspace": ptm.colorspace, "basis": list(PTM_BASIS), "planes": planes}
-    ds.add_layer(layer)
-    return layer
+                groups.append(PlaneGroup([f"{name}{i}" for i in range(3 * g, 3 * g + 3)],
+                                         ptm.coefficients[:, :, c, k], scale[k], bias[k]))
+                names.append(f"{name.lower()}{g}")
+    planes = PlaneLayer("ptm", groups, colorspace=ptm.colorspace, group_names=names)
+    return add_planes_layer(ds, planes, layer_id=layer_id, label=label)
 
 
 def hsh_plane_quantisation(hsh: Hsh) -> tuple[list[float], list[float]]:
@@ -88,22 +98,18 @@ def hsh_plane_quantisation(hsh: Hsh) -> tuple[list[float], list[float]]:
 
 def add_hsh_layer(ds: DatasetWriter, hsh: Hsh, *, layer_id: str = "hsh",
                   label: str = "HSH") -> dict[str, Any]:
-    """Tile an HSH field: one IIIF image per term holding its R, G, B coefficients."""
+    """Add an HSH field: one IIIF image per term holding its R, G, B coefficients."""
     scales, biases = hsh_plane_quantisation(hsh)
-    planes = []
+    groups = []
     for k in range(hsh.terms):
         data = hsh.coefficients[:, :, :, k]
         if hsh.scale[k] == 0.0:
             data = np.full_like(data, 255)
-        svc = ds.add_image(f"{layer_id}_t{k}", np.ascontiguousarray(data), fmt="png")
-        planes.append(_plane(svc, "png", [f"R{k}", f"G{k}", f"B{k}"], [scales[k]] * 3,
-                             [biases[k]] * 3))
-    preview = hsh.dequantized() @ hsh_weights(0.0, 0.0, hsh.terms)
-    ds.add_image(f"{layer_id}_preview", _to_bytes(preview), fmt="jpg")
-    layer = {"id": layer_id, "label": label, "body": f"{layer_id}_preview", "layerType": "hsh",
-             "terms": hsh.terms, "planes": planes}
-    ds.add_layer(layer)
-    return layer
+        groups.append(PlaneGroup([f"R{k}", f"G{k}", f"B{k}"], data, [scales[k]] * 3,
+                                 [biases[k]] * 3))
+    planes = PlaneLayer("hsh", groups, terms=hsh.terms,
+                        group_names=[f"t{k}" for k in range(hsh.terms)])
+    return add_planes_layer(ds, planes, layer_id=layer_id, label=label)
 
 
 def encode_normals(normals: npt.NDArray[np.floating]) -> npt.NDArray[np.uint8]:
@@ -111,13 +117,6 @@ def encode_normals(normals: npt.NDArray[np.floating]) -> npt.NDArray[np.uint8]:
     if normals.ndim != 3 or normals.shape[2] != 3:
         raise ValueError(f"normals must be (H, W, 3), got {normals.shape}")
     return _to_bytes((np.asarray(normals, np.float32) + 1.0) * 0.5)
-
-
-def linear_to_srgb(x: npt.NDArray[np.floating]) -> npt.NDArray[np.float32]:
-    """The sRGB transfer function (docs/rendering.md)."""
-    x = np.clip(np.asarray(x, np.float32), 0.0, 1.0)
-    return np.where(x <= 0.0031308, 12.92 * x, 1.055 * np.power(x, 1 / 2.4) - 0.055).astype(
-        np.float32)
 
 
 def add_svbrdf_layer(
@@ -163,25 +162,24 @@ def add_svbrdf_layer(
         ("gloss", gloss, ["GLOSS"], [1.0], [0.0]),
         ("depth", depth, ["DEPTH"], *_range_quantisation(depth_range)),
     ]
-    planes = []
+    groups: list[PlaneGroup] = []
+    names: list[str] = []
+    shared: dict[int, str] = {}
     for name, data, channels, sc, bi in maps:
         if data is None:
             continue
         expected = (ds.height, ds.width) + ((3,) if len(channels) == 3 else ())
         if data.dtype != np.uint8 or data.shape != expected:
             raise ValueError(f"{name} map must be uint8 {expected}, got {data.dtype} {data.shape}")
-        key = (share or {}).get(name)
-        svc = ds.add_image(f"{layer_id}_{name}", np.ascontiguousarray(data), fmt="png",
-                           share_key=key)
-        planes.append(_plane(svc, "png", channels, sc, bi))
-    if not planes:
+        if share and name in share:
+            shared[len(groups)] = share[name]
+        groups.append(PlaneGroup(channels, data, sc, bi))
+        names.append(name)
+    if not groups:
         raise ValueError("a shape + material layer needs at least one map")
-    preview = _svbrdf_preview(normals, kd, input_colorspace)
-    ds.add_image(f"{layer_id}_preview", _to_bytes(preview), fmt="jpg")
-    layer = {"id": layer_id, "label": label, "body": f"{layer_id}_preview", "layerType": "svbrdf",
-             "glossLimits": [lo, hi], "inputColorSpace": input_colorspace, "planes": planes}
-    ds.add_layer(layer)
-    return layer
+    planes = PlaneLayer("svbrdf", groups, group_names=names,
+                        extra={"glossLimits": [lo, hi], "inputColorSpace": input_colorspace})
+    return add_planes_layer(ds, planes, layer_id=layer_id, label=label, share=shared)
 
 
 def _range_quantisation(value_range: tuple[float, float]) -> tuple[list[float], list[float]]:
@@ -191,64 +189,20 @@ def _range_quantisation(value_range: tuple[float, float]) -> tuple[list[float], 
     return ([span], [-low / span]) if span != 0 else ([low], [0.0])
 
 
-def _svbrdf_preview(normals: npt.NDArray[np.uint8] | None, kd: npt.NDArray[np.uint8] | None,
-                    colorspace: str) -> npt.NDArray[np.float32]:
-    """A Lambertian preview lit from overhead: ``srgb(kd · n.z)`` (or the unshaded kd)."""
-    if kd is None:
-        assert normals is not None
-        albedo = np.full(normals.shape, DEFAULT_KD, np.float32)
-    else:
-        albedo = kd.astype(np.float32) / 255.0
-        if colorspace == "srgb":
-            albedo = np.where(albedo <= 0.04045, albedo / 12.92,
-                              ((albedo + 0.055) / 1.055) ** 2.4).astype(np.float32)
-    if normals is None:
-        return linear_to_srgb(albedo)
-    n = normals.astype(np.float32) / 255.0 * 2.0 - 1.0
-    nz = n[..., 2:3] / np.maximum(np.linalg.norm(n, axis=-1, keepdims=True), 1e-6)
-    return linear_to_srgb(albedo * np.clip(nz, 0.0, 1.0))
-
-
 def add_image_layer(ds: DatasetWriter, image: pyvips.Image, *, layer_id: str = "image",
                     label: str = "Image", fmt: str = "jpg",
                     share_key: str | None = None) -> dict[str, Any]:
-    """Add a plain (unshaded) image layer; a single-band image is a grey ``Y`` layer."""
+    """Add a plain (unshaded) image layer; a single-band image is a grey ``Y`` layer.
+
+    The image is its own manifest body (no preview), so a JPEG layer stays one JPEG pyramid.
+    """
     mono = image.bands == 1
     svc = ds.add_image(layer_id, image, fmt=fmt, share_key=share_key)
-    body = svc["id"].rsplit("/", 1)[1]
-    layer = {"id": layer_id, "label": label, "body": body, "layerType": "image",
-             "planes": [_plane(svc, fmt, ["Y"] if mono else ["R", "G", "B"],
-                               [1.0] * (1 if mono else 3), [0.0] * (1 if mono else 3))]}
+    n = 1 if mono else 3
+    channels = ["Y"] if mono else ["R", "G", "B"]
+    layer = {"id": layer_id, "label": label, "body": svc["id"].rsplit("/", 1)[1],
+             "layerType": "image",
+             "planes": [{"service": svc, "format": fmt, "channels": channels,
+                         "scale": [1.0] * n, "bias": [0.0] * n}]}
     ds.add_layer(layer)
     return layer
-
-
-def add_planes_layer(ds: DatasetWriter, layer: PlaneLayer, *, layer_id: str,
-                     label: str) -> dict[str, Any]:
-    """Tile a format-neutral :class:`~lanterna.tiler.planes.PlaneLayer` (ptm or hsh) as a layer."""
-    planes = []
-    for i, g in enumerate(layer.groups):
-        svc = ds.add_image(f"{layer_id}_p{i}", np.ascontiguousarray(g.data), fmt="png")
-        planes.append(_plane(svc, "png", list(g.channels), list(g.scale), list(g.bias)))
-    ch = layer.channels()
-    if layer.layer_type == "ptm":
-        w = ptm_weights(0.0, 0.0)  # overhead light
-        if layer.colorspace == "lrgb":
-            lum = sum(ch[f"L{k}"] * w[k] for k in range(6))
-            preview = np.stack([ch[c] * lum for c in "RGB"], axis=-1)
-        else:
-            preview = np.stack([sum(ch[f"{c}{k}"] * w[k] for k in range(6)) for c in "RGB"], -1)
-        fields: dict[str, Any] = {"colorspace": layer.colorspace, "basis": list(PTM_BASIS)}
-    elif layer.layer_type == "hsh":
-        assert layer.terms is not None
-        hw = hsh_weights(0.0, 0.0, layer.terms)
-        preview = np.stack([sum(ch[f"{c}{k}"] * hw[k] for k in range(layer.terms)) for c in "RGB"],
-                           axis=-1)
-        fields = {"terms": layer.terms}
-    else:
-        raise ValueError(f"unsupported plane layer type {layer.layer_type!r}")
-    ds.add_image(f"{layer_id}_preview", _to_bytes(preview), fmt="jpg")
-    out = {"id": layer_id, "label": label, "body": f"{layer_id}_preview",
-           "layerType": layer.layer_type, **fields, "planes": planes}
-    ds.add_layer(out)
-    return out

@@ -12,6 +12,8 @@ from dataclasses import dataclass, field
 import numpy as np
 import numpy.typing as npt
 
+from .ptm_model import PTM_BASIS
+
 
 @dataclass(frozen=True)
 class PlaneGroup:
@@ -42,13 +44,36 @@ class PlaneGroup:
 
 @dataclass(frozen=True)
 class PlaneLayer:
-    """A relightable layer as plane groups (``layer_type`` ``ptm`` or ``hsh``)."""
+    """A layer as plane groups (``layer_type`` ``ptm``, ``hsh`` or ``svbrdf``).
+
+    ``group_names`` name the stored images (``{layer_id}_{name}``; default ``p0, p1, …``);
+    ``extra`` carries svbrdf's ``glossLimits``/``inputColorSpace`` and readers' provenance notes.
+    """
 
     layer_type: str
     groups: list[PlaneGroup]
     colorspace: str | None = None
     terms: int | None = None
     extra: dict[str, object] = field(default_factory=dict)
+    group_names: list[str] = field(default_factory=list)
+
+    def __post_init__(self) -> None:
+        if not self.groups:
+            raise ValueError("a plane layer needs at least one group")
+        if not self.group_names:
+            object.__setattr__(self, "group_names", [f"p{i}" for i in range(len(self.groups))])
+        if len(self.group_names) != len(self.groups):
+            raise ValueError("one name per plane group")
+
+    def fields(self) -> dict[str, object]:
+        """The type-specific fields of the layer's relight service block."""
+        if self.layer_type == "ptm":
+            return {"colorspace": self.colorspace, "basis": list(PTM_BASIS)}
+        if self.layer_type == "hsh":
+            return {"terms": self.terms}
+        if self.layer_type == "svbrdf":
+            return {k: self.extra[k] for k in ("glossLimits", "inputColorSpace") if k in self.extra}
+        raise ValueError(f"unsupported plane layer type {self.layer_type!r}")
 
     @property
     def height(self) -> int:

@@ -27,7 +27,6 @@ from lanterna.tiler.layers import (
     add_ptm_layer,
     add_svbrdf_layer,
     encode_normals,
-    linear_to_srgb,
 )
 from lanterna.tiler.ptm_model import Ptm
 from lanterna.tiler.pyramid import vips_from_array
@@ -36,6 +35,7 @@ from lanterna.tiler.render import (
     applicable_modes,
     hsh_basis,
     level_channels,
+    linear_to_srgb,
     render,
 )
 
