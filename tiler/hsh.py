@@ -22,8 +22,6 @@ one-line message.
 
 from __future__ import annotations
 
-import os
-import tempfile
 from collections.abc import Sequence
 from pathlib import Path
 
@@ -31,6 +29,7 @@ import numpy as np
 import numpy.typing as npt
 
 from .errors import LanternaInputError
+from .fileio import read_input, write_atomic
 from .hsh_model import HSH_TERMS, Hsh
 
 #: RTI type codes of the universal header, for error messages.
@@ -99,14 +98,7 @@ def read_rti(path: str | Path) -> Hsh:
         If the file is missing, is not an HSH ``.rti``, or its header and payload disagree.
     """
     src = Path(path)
-    try:
-        data = src.read_bytes()
-    except FileNotFoundError:
-        raise LanternaInputError(src, "file not found") from None
-    except IsADirectoryError:
-        raise LanternaInputError(src, "is a directory, not an .rti file") from None
-    except OSError as exc:
-        raise LanternaInputError(src, f"cannot read file ({exc.strerror})") from None
+    data = read_input(src, "an .rti file")
     if data.startswith(b"PTM_"):
         raise LanternaInputError(src, "is a PTM file, not an .rti file (use the PTM reader)")
     header = _Header(data, src)
@@ -213,20 +205,5 @@ def write_rti(
         values = (hsh.coefficients.astype(np.float64) / 255.0 * hsh.scale.astype(np.float64)
                   + hsh.bias.astype(np.float64))
         payload = values.astype("<f4").tobytes()
-    _write_atomic(Path(path), (head, table, payload))
-
-
-def _write_atomic(dest: Path, chunks: Sequence[bytes]) -> None:
-    try:
-        fd, tmp = tempfile.mkstemp(dir=dest.parent, prefix=f".{dest.name}.", suffix=".tmp")
-    except OSError as exc:
-        raise LanternaInputError(dest, f"cannot write file ({exc.strerror})") from None
-    try:
-        with os.fdopen(fd, "wb") as out:
-            for chunk in chunks:
-                out.write(chunk)
-        os.replace(tmp, dest)
-    except BaseException:
-        Path(tmp).unlink(missing_ok=True)
-        raise
+    write_atomic(Path(path), (head, table, payload))
 

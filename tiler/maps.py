@@ -23,6 +23,7 @@ import numpy.typing as npt
 import pyvips
 
 from .errors import LanternaInputError
+from .fileio import read_input
 
 NORMAL_CONVENTIONS = ("opengl", "directx")
 _DTYPES = {"uchar": np.uint8, "ushort": np.uint16, "float": np.float32, "double": np.float64}
@@ -38,14 +39,7 @@ _SHORT = 0.05
 def _read(path: str | Path, *, allow_float: bool = False) -> npt.NDArray[np.generic]:
     """Decode ``path`` to ``(H, W, bands)`` uint8/uint16 (or float), alpha dropped."""
     src = Path(path)
-    try:
-        data = src.read_bytes()
-    except FileNotFoundError:
-        raise LanternaInputError(src, "file not found") from None
-    except IsADirectoryError:
-        raise LanternaInputError(src, "is a directory, not an image") from None
-    except OSError as exc:
-        raise LanternaInputError(src, f"cannot read file ({exc.strerror})") from None
+    data = read_input(src, "an image")
     try:
         image = pyvips.Image.new_from_buffer(data, "", fail_on="warning")
         if image.interpretation == "cmyk":

@@ -21,6 +21,7 @@ import numpy.typing as npt
 import pyvips
 
 from .errors import LanternaInputError
+from .fileio import read_input
 from .ptm_model import Ptm
 
 #: Header versions we read.
@@ -194,14 +195,7 @@ def read_ptm(path: str | Path) -> Ptm:
         payload are inconsistent or corrupt.
     """
     src = Path(path)
-    try:
-        data = src.read_bytes()
-    except FileNotFoundError:
-        raise LanternaInputError(src, "file not found") from None
-    except IsADirectoryError:
-        raise LanternaInputError(src, "is a directory, not a PTM file") from None
-    except OSError as exc:
-        raise LanternaInputError(src, f"cannot read file ({exc.strerror})") from None
+    data = read_input(src, "a PTM file")
     if not data.startswith(b"PTM_"):
         raise LanternaInputError(src, "not a PTM file (does not start with PTM_)")
     lines = _Lines(data, src)

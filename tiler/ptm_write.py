@@ -7,8 +7,6 @@ build small files and by the demo generator.
 
 from __future__ import annotations
 
-import os
-import tempfile
 from collections.abc import Sequence
 from dataclasses import dataclass
 from pathlib import Path
@@ -19,6 +17,7 @@ import numpy.typing as npt
 import pyvips
 
 from .errors import LanternaInputError
+from .fileio import write_atomic
 from .ptm_model import Ptm
 
 PtmFormat = Literal[
@@ -106,7 +105,7 @@ def write_ptm(
         if prediction is not None:
             raise LanternaInputError(dest, "prediction applies to JPEG formats only")
         body = [_raw_payload(ptm, version)]
-    _write_atomic(dest, [header, *body])
+    write_atomic(dest, [header, *body])
 
 
 def _format_float(value: float) -> str:
@@ -236,18 +235,3 @@ def _jpeg_body(ptm: Ptm, quality: int, prediction: PtmPrediction | None, dest: P
     for stream, side in zip(streams, sides, strict=True):
         body += [stream, side]
     return body
-
-
-def _write_atomic(dest: Path, chunks: Sequence[bytes]) -> None:
-    try:
-        fd, tmp = tempfile.mkstemp(dir=dest.parent, prefix=f".{dest.name}.", suffix=".tmp")
-    except OSError as exc:
-        raise LanternaInputError(dest, f"cannot write file ({exc.strerror})") from None
-    try:
-        with os.fdopen(fd, "wb") as out:
-            for chunk in chunks:
-                out.write(chunk)
-        os.replace(tmp, dest)
-    except BaseException:
-        Path(tmp).unlink(missing_ok=True)
-        raise
