@@ -3,8 +3,8 @@
     .venv/bin/python bench/make_datasets.py ROOT [--width 4096 --height 3072]
 
 Writes ROOT/bench with layers (in order) ``ptm_lrgb``, ``ptm_rgb``, ``hsh9``, ``hsh16``,
-``svbrdf``, ``image`` (RGB JPEG), ``mono`` (single-band ``Y``) and ``plain`` (the colour image as PNG,
-the benchmark's reference). Coefficients are analytic fits of a Lambertian tablet (not camera
+``svbrdf``, ``image`` (RGB JPEG), ``mono`` (single-band ``Y``) and ``plain`` (the colour image as
+PNG, the benchmark's reference). Coefficients are analytic fits of a Lambertian tablet (not camera
 captures): good enough to look plausible and to measure speed.
 """
 
@@ -21,8 +21,13 @@ from lanterna.tiler.dataset import DatasetWriter
 from lanterna.tiler.demo_object import make_demo_object
 from lanterna.tiler.hsh_basis import hsh_weights
 from lanterna.tiler.hsh_model import Hsh
-from lanterna.tiler.layers import (add_hsh_layer, add_image_layer, add_ptm_layer, add_svbrdf_layer,
-                                   encode_normals)
+from lanterna.tiler.layers import (
+    add_hsh_layer,
+    add_image_layer,
+    add_ptm_layer,
+    add_svbrdf_layer,
+    encode_normals,
+)
 from lanterna.tiler.ptm_model import Ptm
 
 
@@ -54,11 +59,11 @@ def hsh_field(n: np.ndarray, albedo: np.ndarray, terms: int) -> Hsh:
     coef = np.empty((h, w, 3, terms), np.float32)
     pinv = np.linalg.pinv(hmat)  # (terms, L)
     for y0 in range(0, h, 256):
-        nn = n[y0:y0 + 256].reshape(-1, 3).astype(np.float64)
+        nn = n[y0 : y0 + 256].reshape(-1, 3).astype(np.float64)
         shade = np.maximum(nn @ lmat.T, 0.0)  # (P, L)
         k = shade @ pinv.T  # (P, terms)
-        a = albedo[y0:y0 + 256].reshape(-1, 3, 1) * k[:, None, :]
-        coef[y0:y0 + 256] = a.reshape(-1, w, 3, terms)
+        a = albedo[y0 : y0 + 256].reshape(-1, 3, 1) * k[:, None, :]
+        coef[y0 : y0 + 256] = a.reshape(-1, w, 3, terms)
     lo = coef.min(axis=(0, 1, 2))
     hi = coef.max(axis=(0, 1, 2))
     span = np.where(hi > lo, hi - lo, 1.0)
@@ -71,26 +76,51 @@ def build(root: Path, width: int, height: int) -> None:
     n, albedo = obj.normals, obj.albedo
     colour = np.round(np.clip(albedo, 0, 1) * 255).astype(np.uint8)
     lum = lambert_ptm_coefficients(n)
-    with DatasetWriter(root / "bench", name="bench", label="Demo tablet, every layer type",
-                       width=width, height=height, force=True) as ds:
+    with DatasetWriter(
+        root / "bench",
+        name="bench",
+        label="Demo tablet, every layer type",
+        width=width,
+        height=height,
+        force=True,
+    ) as ds:
         q, scale, bias = quantise_ptm(lum)
-        add_ptm_layer(ds, Ptm("lrgb", q, scale, bias, colour), layer_id="ptm_lrgb", label="PTM LRGB")
+        add_ptm_layer(
+            ds, Ptm("lrgb", q, scale, bias, colour), layer_id="ptm_lrgb", label="PTM LRGB"
+        )
         q, scale, bias = quantise_ptm(albedo[..., :, None] * lum[..., None, :])
         add_ptm_layer(ds, Ptm("rgb", q, scale, bias), layer_id="ptm_rgb", label="PTM RGB")
         for terms in (9, 16):
-            add_hsh_layer(ds, hsh_field(n, albedo, terms), layer_id=f"hsh{terms}", label=f"HSH {terms}")
+            add_hsh_layer(
+                ds, hsh_field(n, albedo, terms), layer_id=f"hsh{terms}", label=f"HSH {terms}"
+            )
         lin = np.where(albedo <= 0.04045, albedo / 12.92, ((albedo + 0.055) / 1.055) ** 2.4)
         ks = (obj.specular[..., None] * obj.specular_color[None, None, :]).clip(0, 1)
-        add_svbrdf_layer(ds, normals=encode_normals(n),
-                         kd=np.round(lin * 255).astype(np.uint8),
-                         ks=np.round(ks * 255).astype(np.uint8),
-                         gloss=np.round((1 - obj.specular) * 255).astype(np.uint8),
-                         layer_id="svbrdf", label="Shape and material")
-        add_image_layer(ds, pyvips.Image.new_from_array(colour), layer_id="image", label="Image (JPEG)")
-        grey = np.round(colour.astype(np.float32) @ np.array([0.2126, 0.7152, 0.0722])).astype(np.uint8)
-        add_image_layer(ds, pyvips.Image.new_from_array(grey), layer_id="mono", label="Image (Y)", fmt="png")
-        add_image_layer(ds, pyvips.Image.new_from_array(colour), layer_id="plain", label="Plain (PNG)",
-                        fmt="png")
+        add_svbrdf_layer(
+            ds,
+            normals=encode_normals(n),
+            kd=np.round(lin * 255).astype(np.uint8),
+            ks=np.round(ks * 255).astype(np.uint8),
+            gloss=np.round((1 - obj.specular) * 255).astype(np.uint8),
+            layer_id="svbrdf",
+            label="Shape and material",
+        )
+        add_image_layer(
+            ds, pyvips.Image.new_from_array(colour), layer_id="image", label="Image (JPEG)"
+        )
+        grey = np.round(colour.astype(np.float32) @ np.array([0.2126, 0.7152, 0.0722])).astype(
+            np.uint8
+        )
+        add_image_layer(
+            ds, pyvips.Image.new_from_array(grey), layer_id="mono", label="Image (Y)", fmt="png"
+        )
+        add_image_layer(
+            ds,
+            pyvips.Image.new_from_array(colour),
+            layer_id="plain",
+            label="Plain (PNG)",
+            fmt="png",
+        )
 
 
 def main() -> None:
