@@ -135,3 +135,28 @@ def test_real_ushabti_is_relit_from_the_side_the_light_comes_from(
     widths = mask.sum(axis=1)
     third = len(widths) // 3
     assert widths[:third].mean() > 1.1 * widths[-third:].mean()  # measured 1.23
+
+
+@pytest.mark.realdata
+def test_real_vase_hsh_is_relit_the_right_way_up(
+        tmp_path: Path, live_server: Callable[[Path], LiveServer]) -> None:
+    from lanterna.cli import main
+
+    from .conftest import shared_file
+
+    src = shared_file("realdata/chi-ushabti-vase/vase.rti")
+    root = tmp_path / "root"
+    assert main(["import", str(src), "-o", str(root / "vase")]) == 0
+    server = live_server(root)
+    url = f"{server.url}/viewer/?manifest={server.url}/datasets/vase/manifest.json"
+    lights = {"left": (-0.8, 0.0), "right": (0.8, 0.0), "top": (0.0, 0.8), "bottom": (0.0, -0.8)}
+    shots = [Shot(light, (0, 0, 320, 470), tmp_path / f"{name}.rgba")
+             for name, light in lights.items()]
+    frames = {name: f[..., :3].astype(np.float64).mean(axis=-1)
+              for name, f in zip(lights, render(url, shots, viewport=(320, 470)), strict=True)}
+    half = 160
+    assert frames["left"][:, :half].mean() > 1.3 * frames["left"][:, half:].mean()
+    assert frames["right"][:, half:].mean() > 1.3 * frames["right"][:, :half].mean()
+    # the shoulder (rows 150–260, above the widest row at y≈272) faces up: lit from the top
+    shoulder = slice(150, 260)
+    assert frames["top"][shoulder].mean() > 1.2 * frames["bottom"][shoulder].mean()
