@@ -4,6 +4,7 @@ One Canvas; one painting annotation whose body is a ``Choice`` of the layers (th
 the default visible layer). Each item is an ``Image`` (a concrete ``full/max`` URL of the layer's
 colour image) with two services: the ``ImageService3`` of that image and the layer's
 ``LanternaRelight`` block, so any IIIF viewer shows the colour image and Lanterna relights it.
+Layers with an overlay add ``canvas.annotations`` (:mod:`lanterna.manifests.overlays`).
 """
 
 from __future__ import annotations
@@ -20,6 +21,8 @@ from iiif_prezi3 import (
     ServiceV3,
     config,
 )
+
+from .overlays import overlay_pages
 
 config.configs["helpers.auto_fields.AutoLang"].auto_lang = "en"
 
@@ -56,4 +59,7 @@ def build_manifest(desc: dict[str, Any]) -> dict[str, Any]:
                              body=Choice(items=bodies), target=canvas.id))
     canvas.add_item(page)
     doc: dict[str, Any] = json.loads(manifest.json(indent=2))
+    pages = overlay_pages(desc)
+    if pages:
+        doc["items"][0]["annotations"] = pages
     return doc

@@ -7,9 +7,12 @@ so a failure (bad input, a full disk, Ctrl-C) leaves nothing half-written.
 from __future__ import annotations
 
 import json
+import os
 import re
 import shutil
 import tempfile
+from collections.abc import Iterator
+from contextlib import contextmanager
 from pathlib import Path
 from types import TracebackType
 from typing import Any
@@ -91,11 +94,13 @@ class DatasetWriter:
         return f"{self.base_url}/{self.name}"
 
     def add_image(self, identifier: str, image: npt.NDArray[np.uint8] | pyvips.Image, *,
-                  fmt: str = "png", share_key: str | None = None) -> dict[str, Any]:
+                  fmt: str = "png", share_key: str | None = None,
+                  size: tuple[int, int] | None = None) -> dict[str, Any]:
         """Tile ``image`` as IIIF image ``identifier``; return its ``ImageService3`` reference.
 
         Images given the same ``share_key`` (e.g. the resolved path of a normal map used by several
         layers) are stored and served once: later calls return the first image's service.
+        ``size`` is the expected ``(width, height)`` when it is not the canvas's (overlay levels).
         """
         assert self._tmp is not None, "use DatasetWriter as a context manager"
         if share_key is not None and share_key in self._shared:
@@ -104,9 +109,11 @@ class DatasetWriter:
         if identifier in self.images:
             raise ValueError(f"image {identifier!r} added twice")
         vimg = vips_from_array(image) if isinstance(image, np.ndarray) else image
-        if (vimg.width, vimg.height) != (self.width, self.height):
+        want_w, want_h = size or (self.width, self.height)
+        if (vimg.width, vimg.height) != (want_w, want_h):
+            what = "the dataset is" if size is None else "expected"
             raise LanternaInputError(self.source, f"image {identifier} is {vimg.width}x"
-                                     f"{vimg.height}, the dataset is {self.width}x{self.height}")
+                                     f"{vimg.height}, {what} {want_w}x{want_h}")
         (self._tmp / "iiif").mkdir(exist_ok=True)
         service_id = f"{self.dataset_url}/iiif/{identifier}"
         write_pyramid(vimg, self._tmp / "iiif" / identifier, service_id, fmt=fmt,
@@ -161,20 +168,78 @@ class DatasetWriter:
         assert self._tmp is not None
         if not self.layers:
             raise ValueError("a dataset needs at least one layer")
-        desc = self.description()
-        (self._tmp / "layers").mkdir()
-        for layer in desc["layers"]:
-            _write_json(self._tmp / "layers" / f"{layer['id']}.json", layer["service"])
-        _write_json(self._tmp / "lanterna.json", desc)
-        _write_json(self._tmp / "manifest.json", build_manifest(desc))
-        if self.out.exists():
-            old = self.out.with_name(f".{self.out.name}.old-{self._tmp.name[-8:]}")
-            self.out.rename(old)
-            self._tmp.rename(self.out)
-            shutil.rmtree(old, ignore_errors=True)
-        else:
-            self._tmp.rename(self.out)
+        write_documents(self._tmp, self.description())
+        publish(self._tmp, self.out)
+
+
+def write_documents(folder: Path, desc: dict[str, Any]) -> None:
+    """Write ``desc`` as ``layers/*.json``, ``lanterna.json`` and ``manifest.json`` in folder."""
+    (folder / "layers").mkdir(exist_ok=True)
+    for layer in desc["layers"]:
+        _write_json(folder / "layers" / f"{layer['id']}.json", layer["service"])
+    _write_json(folder / "lanterna.json", desc)
+    _write_json(folder / "manifest.json", build_manifest(desc))
+
+
+def publish(tmp: Path, out: Path) -> None:
+    """Put the complete dataset folder ``tmp`` at ``out``, replacing what was there."""
+    if out.exists():
+        old = out.with_name(f".{out.name}.old-{tmp.name[-8:]}")
+        out.rename(old)
+        tmp.rename(out)
+        shutil.rmtree(old, ignore_errors=True)
+    else:
+        tmp.rename(out)
+
+
+@contextmanager
+def rewriting(out: Path) -> Iterator[tuple[Path, dict[str, Any]]]:
+    """Rewrite the existing dataset ``out`` atomically; yield ``(folder, description)``.
+
+    The dataset is copied into a temporary folder beside it (files hard-linked, so unchanged tiles
+    cost nothing; files are only ever replaced, never written through a link). The caller changes
+    the copy and the description in place; on a clean exit the documents (``lanterna.json``,
+    ``layers/*.json``, ``manifest.json``) are regenerated from the description and the copy
+    replaces ``out``. On an error the copy is removed and ``out`` is untouched.
+    """
+    out = Path(out)
+    desc = read_description(out)
+    tmp = Path(tempfile.mkdtemp(prefix=f".{out.name}.tmp-", dir=out.parent))
+    try:
+        tmp.chmod(0o755)
+        shutil.copytree(out, tmp, dirs_exist_ok=True, copy_function=_link_or_copy)
+        yield tmp, desc
+        write_documents(tmp, desc)
+        publish(tmp, out)
+    finally:
+        shutil.rmtree(tmp, ignore_errors=True)
+
+
+def read_description(dataset: Path) -> dict[str, Any]:
+    """Read a dataset's ``lanterna.json`` with a one-line error if it is not a dataset."""
+    path = Path(dataset) / "lanterna.json"
+    try:
+        desc = json.loads(path.read_text())
+    except OSError:
+        raise LanternaInputError(dataset, "not a Lanterna dataset (no lanterna.json)") from None
+    except ValueError as err:
+        raise LanternaInputError(path, f"not valid JSON ({err})") from None
+    if not isinstance(desc, dict) or desc.get("lanterna") != FORMAT_VERSION:
+        raise LanternaInputError(path, f"not a version-{FORMAT_VERSION} dataset description")
+    return desc
+
+
+def _link_or_copy(src: str, dst: str) -> object:
+    try:
+        os.link(src, dst)
+    except OSError:
+        shutil.copy2(src, dst)
+    return dst
 
 
 def _write_json(path: Path, doc: dict[str, Any]) -> None:
-    path.write_text(json.dumps(doc, indent=2) + "\n")
+    # Write a new file and rename it over the old one: ``path`` may be a hard link shared with
+    # the published dataset (see ``rewriting``), which must not change.
+    part = path.with_name(path.name + ".part")
+    part.write_text(json.dumps(doc, indent=2) + "\n")
+    os.replace(part, path)
