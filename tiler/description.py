@@ -76,7 +76,7 @@ def _plan_entry(entry: dict[str, Any], base: Path, path: Path, i: int) -> list[L
             raise LanternaInputError(path, f"{where}: needs \"source\"")
         plan = plan_source(base / entry["source"], layer_id=lid, label=label)
         if "overlay" in entry:
-            _attach_overlay(plan, entry["overlay"])
+            _attach_overlay(plan, entry["overlay"], base)
         return [plan]
     if kind == "svbrdf":
         maps = entry.get("maps")
@@ -90,7 +90,7 @@ def _plan_entry(entry: dict[str, Any], base: Path, path: Path, i: int) -> list[L
                            input_colorspace=str(entry.get("inputColorSpace", "linear")).lower(),
                            normal_convention=str(entry.get("normalConvention", "opengl")))
         if "overlay" in entry:
-            _attach_overlay(plan, entry["overlay"])
+            _attach_overlay(plan, entry["overlay"], base)
         return [plan]
     if kind == "bands":
         bands = entry.get("bands")
@@ -102,14 +102,21 @@ def _plan_entry(entry: dict[str, Any], base: Path, path: Path, i: int) -> list[L
                              "svbrdf or bands)")
 
 
-def _attach_overlay(plan: LayerPlan, overlay: Any) -> None:
-    """Keep a layer's overlay description in the dataset (drawn by a later version)."""
+def _attach_overlay(plan: LayerPlan, overlay: Any, base: Path | None = None) -> None:
+    """Give a layer its overlay: a seed-paper ``{img, range, shortInfo, longInfo}`` entry has its
+    level images (relative to ``base``) tiled as the layer's overlay levels; other values are kept
+    in the dataset as given."""
     add = plan.add
 
     def add_with_overlay(ds: Any) -> object:
         layer = add(ds)
         if isinstance(layer, dict):
-            layer["overlay"] = overlay
+            if base is not None and isinstance(overlay, dict) and "img" in overlay:
+                from .overlays import scene_overlay
+
+                layer["overlay"] = scene_overlay(ds, layer["id"], overlay, base)
+            else:
+                layer["overlay"] = overlay
         return layer
 
     plan.add = add_with_overlay

@@ -6,7 +6,8 @@ A scene lists layers whose ``obj.shader.type`` is ``LRGB_PTM`` (maps ``coeff_0_1
 completed by a two-digit level of detail: ``vis/kdMap.jpg`` names ``vis/kdMap00.jpg`` at full
 resolution (we build our own pyramids, so only level ``00`` is read; a name that exists as
 written is accepted too). Layers sharing a file (e.g. one normal map) share one stored image.
-``overlay`` entries are kept in the dataset description for the annotation viewer.
+``overlay`` entries (``img`` template, ``range``, ``shortInfo``, ``longInfo``) become the layer's
+overlay levels (:func:`lanterna.tiler.overlays.scene_overlay`); missing level images are warnings.
 """
 
 from __future__ import annotations
@@ -67,7 +68,7 @@ def plan_scene(doc: dict[str, Any], path: Path) -> tuple[dict[str, Any], list[La
         if "overlay" in layer:
             from .description import _attach_overlay
 
-            _attach_overlay(plan, layer["overlay"])
+            _attach_overlay(plan, layer["overlay"], base)
         plans.append(plan)
     for key in ("width", "height"):
         declared = doc.get(key)

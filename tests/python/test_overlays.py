@@ -227,3 +227,29 @@ def test_rebuild_replaces_the_overlay_and_removes_unused_images(tmp_path: Path) 
     assert read_image(dataset, "vis_ov2")[0, 0].tolist() == [0, 0, 255, 255]
     assert tile.stat().st_ino == inode  # unchanged tiles are hard-linked, not copied
     assert sorted(p.name for p in tmp_path.iterdir()) == ["a", "b", "obj"]
+
+
+def test_gimp_levels_are_used_as_drawn(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    dataset = make_dataset(tmp_path)
+    folder = tmp_path / "gimp"
+    folder.mkdir()
+    level1 = patch(200, 300, (200, 100, 50), 120, 7)
+    full = patch(H, W, (0, 0, 255), 255, 8)  # a level-2 drawing at canvas size: downscaled
+    png(folder / "level_1.png", level1)
+    png(folder / "2.png", full)
+    png(folder / "level_02.png", full)  # level 2 twice
+    png(folder / "0.png", patch(10, 10, (0, 0, 0), 255))  # wrong size
+    (tmp_path / "t.json").write_text(json.dumps({"1": {"short": "one"}, "0": {"short": "x"}}))
+    assert main(["annotate", "build", str(dataset), "--layer", "uv", "--gimp", str(folder),
+                 "--texts", str(tmp_path / "t.json")]) == 1
+    err = capsys.readouterr().err
+    assert f"{folder}/0.png: is 10x10; level 0 of the 600x400 canvas is 600x400" in err
+    assert f"{folder}/level_02.png: level 2 is also given by 2.png" in err
+    assert "texts for level 0 ignored: no overlay image at that level" in err
+    np.testing.assert_array_equal(read_image(dataset, "uv_ov1"), level1)
+    level2 = read_image(dataset, "uv_ov2")
+    assert level2.shape == (100, 150, 4) and np.all(level2[..., 2] == 255)
+    desc = json.loads((dataset / "lanterna.json").read_text())
+    overlay = desc["layers"][1]["overlay"]
+    assert overlay["source"] == "gimp" and overlay["patches"] == []
+    assert [(e["level"], e["short"]) for e in overlay["levels"]] == [(1, "one"), (2, "")]
