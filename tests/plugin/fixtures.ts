@@ -72,3 +72,50 @@ export function info(overrides: Record<string, unknown> = {}): Record<string, un
     ...overrides,
   };
 }
+
+/** One overlay level annotation shaped like docs/annotations.md ("Storage and manifest"). */
+export function overlayAnnotation(layer: string, level: number, short: string, long: string): Record<string, unknown> {
+  const w = Math.ceil(512 / 2 ** level);
+  const h = Math.ceil(1024 / 2 ** level);
+  return {
+    id: `${BASE}/canvas/1/overlays/${layer}/${level}`,
+    type: 'Annotation',
+    motivation: 'supplementing',
+    label: { en: [short] },
+    target: {
+      type: 'SpecificResource',
+      source: `${BASE}/canvas/1`,
+      selector: { type: 'FragmentSelector', conformsTo: 'http://www.w3.org/TR/media-frags/', value: 'xywh=0,0,512,1024' },
+    },
+    body: [
+      {
+        id: `${BASE}/iiif/${layer}_ov${level}/full/max/0/default.png`,
+        type: 'Image',
+        format: 'image/png',
+        width: w,
+        height: h,
+        service: [
+          { id: `${BASE}/iiif/${layer}_ov${level}`, type: 'ImageService3', profile: 'level0' },
+          { id: `${BASE}/layers/${layer}.json#overlay-${level}`, type: 'LanternaOverlayLevel',
+            profile: 'urn:lanterna:overlay:1', layer, level, short, long },
+        ],
+      },
+      { type: 'TextualBody', format: 'text/html', purpose: 'describing', value: long },
+    ],
+  };
+}
+
+/** The fixture manifest with `canvas.annotations` set to `pages`. */
+export function manifestWithAnnotations(pages: unknown[]): Record<string, unknown> {
+  const m = manifest();
+  const canvas = (m.items as Record<string, unknown>[])[0];
+  if (canvas) {
+    canvas.annotations = pages;
+  }
+  return m;
+}
+
+/** An overlay annotation page of `layer`. */
+export function overlayPage(layer: string, items: unknown[]): Record<string, unknown> {
+  return { id: `${BASE}/canvas/1/overlays/${layer}`, type: 'AnnotationPage', label: { en: [`Annotations: ${layer}`] }, items };
+}

@@ -37,3 +37,6 @@ export class FetchError extends LanternaError {
     this.status = status;
   }
 }
+
+/** A `LanternaOverlayLevel` annotation breaks the contract (`docs/annotations.md`). */
+export class OverlayError extends ManifestError {}

@@ -2,6 +2,7 @@
  * Find the relightable layer in a IIIF Presentation 3 manifest. Pure: no DOM, no network.
  */
 import { ManifestError, MissingRelightServiceError } from './errors';
+import { parseOverlays, type OverlayLevel } from './overlays';
 import { parseRelightService, RELIGHT_SERVICE_TYPE, type RelightLayer } from './relight-service';
 
 /** One layer of a manifest: a painting `Image` (a `Choice` item) with its relight service. */
@@ -14,6 +15,8 @@ export interface ManifestLayer {
   readonly imageId: string;
   /** The validated relight layer. */
   readonly layer: RelightLayer;
+  /** Its overlay levels (`docs/annotations.md`), ascending; empty when it has no overlay. */
+  readonly overlays: readonly OverlayLevel[];
 }
 
 /** What the viewer needs from a manifest. */
@@ -61,13 +64,38 @@ export function labelText(label: unknown): string {
   return '';
 }
 
+/** The painting images of one canvas: every `Image` body, or every `Image` of a `Choice`, in order. */
+function canvasPaintingImages(canvas: Json): Json[] {
+  const images: Json[] = [];
+  for (const page of asArray(canvas.items)) {
+    if (!isRecord(page)) {
+      continue;
+    }
+    for (const anno of asArray(page.items)) {
+      if (!isRecord(anno) || !asArray(anno.motivation).includes('painting')) {
+        continue;
+      }
+      for (const body of asArray(anno.body)) {
+        if (!isRecord(body)) {
+          continue;
+        }
+        if (body.type === 'Image') {
+          images.push(body);
+        } else if (body.type === 'Choice') {
+          images.push(...asArray(body.items).filter((it): it is Json => isRecord(it) && it.type === 'Image'));
+        }
+      }
+    }
+  }
+  return images;
+}
+
 /**
- * The painting images of the first canvas that has any: an `Image` body, or every `Image` of a
- * `Choice`, in order.
+ * The first canvas that has painting images, with those images.
  *
  * @throws {@link ManifestError} when there is none
  */
-export function findPaintingImages(manifest: unknown): Json[] {
+export function findPaintingCanvas(manifest: unknown): { canvas: Json; images: Json[] } {
   if (!isRecord(manifest) || manifest.type !== 'Manifest') {
     throw new ManifestError('not a IIIF Presentation 3 manifest (type must be "Manifest")');
   }
@@ -75,32 +103,22 @@ export function findPaintingImages(manifest: unknown): Json[] {
     if (!isRecord(canvas)) {
       continue;
     }
-    const images: Json[] = [];
-    for (const page of asArray(canvas.items)) {
-      if (!isRecord(page)) {
-        continue;
-      }
-      for (const anno of asArray(page.items)) {
-        if (!isRecord(anno) || !asArray(anno.motivation).includes('painting')) {
-          continue;
-        }
-        for (const body of asArray(anno.body)) {
-          if (!isRecord(body)) {
-            continue;
-          }
-          if (body.type === 'Image') {
-            images.push(body);
-          } else if (body.type === 'Choice') {
-            images.push(...asArray(body.items).filter((it): it is Json => isRecord(it) && it.type === 'Image'));
-          }
-        }
-      }
-    }
+    const images = canvasPaintingImages(canvas);
     if (images.length > 0) {
-      return images;
+      return { canvas, images };
     }
   }
   throw new ManifestError('the manifest has no painting Image (or Choice of Images) on any canvas');
+}
+
+/**
+ * The painting images of the first canvas that has any: an `Image` body, or every `Image` of a
+ * `Choice`, in order.
+ *
+ * @throws {@link ManifestError} when there is none
+ */
+export function findPaintingImages(manifest: unknown): Json[] {
+  return findPaintingCanvas(manifest).images;
 }
 
 /**
@@ -124,11 +142,12 @@ export function idFromUrl(url: string): string {
  * service; images without one are skipped).
  *
  * @throws {@link ManifestError} no painting image, or two layers with the same id;
+ *   {@link OverlayError} a malformed overlay level annotation;
  *   {@link MissingRelightServiceError} no image has a `LanternaRelight` service;
  *   {@link RelightServiceError} a service block is invalid
  */
 export function parseManifest(manifest: unknown): ManifestInfo {
-  const images = findPaintingImages(manifest);
+  const { canvas, images } = findPaintingCanvas(manifest);
   const layers: ManifestLayer[] = [];
   for (const image of images) {
     const service = asArray(image.service).find((s) => isRecord(s) && s.type === RELIGHT_SERVICE_TYPE);
@@ -143,7 +162,7 @@ export function parseManifest(manifest: unknown): ManifestInfo {
     if (layers.some((l) => l.id === id)) {
       throw new ManifestError(`two layers have the id ${JSON.stringify(id)}`);
     }
-    layers.push({ id, label: labelText(image.label) || id, imageId, layer });
+    layers.push({ id, label: labelText(image.label) || id, imageId, layer, overlays: [] });
   }
   const first = layers[0];
   if (!first) {
@@ -151,6 +170,8 @@ export function parseManifest(manifest: unknown): ManifestInfo {
       `the painting image ${String(images[0]?.id)} has no ${RELIGHT_SERVICE_TYPE} service`,
     );
   }
+  const overlays = parseOverlays(canvas, layers.map((l) => l.id));
+  const withOverlays = layers.map((l) => ({ ...l, overlays: overlays.get(l.id) ?? [] }));
   const label = isRecord(manifest) ? labelText(manifest.label) : '';
-  return { label, layers, imageId: first.imageId, layer: first.layer };
+  return { label, layers: withOverlays, imageId: first.imageId, layer: first.layer };
 }
