@@ -298,11 +298,12 @@ def build_overlays(dataset_dir: Path, layer_id: str, *, patches_dir: Path | None
         report.warnings.append(f"texts for level {level} ignored: no overlay image at that level")
 
     previous = _previous_levels(layer)
-    own = {image_id(layer_id, lv) for lv in levels} | {e["image"] for e in previous.values()}
-    clash = sorted(i for i in desc.get("images", {}) if i in own and not i.startswith(
-        f"{layer_id}_ov"))
+    old_images = {e["image"] for e in previous.values()}
+    clash = sorted(ident for ident in (image_id(layer_id, lv) for lv in levels)
+                   if ident in desc.get("images", {}) and ident not in old_images)
     if clash:
-        raise LanternaInputError(dataset_dir, f"image id(s) {', '.join(clash)} already used")
+        raise LanternaInputError(dataset_dir, f"image id(s) {', '.join(clash)} already used by "
+                                 "something other than this layer's overlay")
 
     with rewriting(dataset_dir) as (tmp, new_desc):
         new_layer = _find_layer(new_desc, layer_id, dataset_dir)

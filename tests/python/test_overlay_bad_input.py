@@ -12,6 +12,7 @@ import pytest
 
 import lanterna.tiler.overlays as overlays
 from lanterna.cli import main
+from lanterna.tiler.errors import LanternaInputError
 from lanterna.tiler.overlays import OverlayInputError, build_overlays
 
 from .test_overlays import make_dataset, patch, png
@@ -153,3 +154,15 @@ def test_failure_midway_keeps_the_previous_overlay_and_leaves_no_temp_dirs(
     assert desc["layers"][0]["overlay"]["levels"][0]["short"] == "old"
     leftovers = [p.name for p in dataset.parent.iterdir() if p.name != dataset.name]
     assert leftovers == []
+
+
+def test_an_image_of_another_layer_is_never_replaced(tmp_path: Path) -> None:
+    dataset = make_dataset(tmp_path / "root", layers=("vis", "vis_ov0"))
+    folder = tmp_path / "p"
+    folder.mkdir()
+    png(folder / "0_0_0_4_4_0_x.png", patch(4, 4, (9, 9, 9), 255))
+    before = tree(dataset)
+    with pytest.raises(LanternaInputError, match=r"image id\(s\) vis_ov0 already used by "
+                                                 "something other than this layer's overlay"):
+        build_overlays(dataset, "vis", patches_dir=folder)
+    assert tree(dataset) == before

@@ -26,12 +26,12 @@ def png(path: Path, array: np.ndarray) -> Path:
     return path
 
 
-def make_dataset(root: Path, name: str = "obj") -> Path:
-    """Write a two-layer image dataset (``vis``, ``uv``) of W×H."""
+def make_dataset(root: Path, name: str = "obj", layers: tuple[str, ...] = ("vis", "uv")) -> Path:
+    """Write an image dataset of W×H with one layer per id (default ``vis``, ``uv``)."""
     rng = np.random.default_rng(1)
     with DatasetWriter(root / name, name=name, label="Object", width=W, height=H,
                        base_url=BASE) as ds:
-        for lid in ("vis", "uv"):
+        for lid in layers:
             img = pyvips.Image.new_from_array(rng.integers(0, 256, (H, W, 3), dtype=np.uint8))
             add_image_layer(ds, img.copy(interpretation="srgb"), layer_id=lid,
                             label=lid.upper(), fmt="png")
