@@ -107,7 +107,8 @@ class DatasetWriter:
             return self._service(self._shared[share_key])
         check_identifier(identifier, "image identifier")
         if identifier in self.images:
-            raise ValueError(f"image {identifier!r} added twice")
+            raise LanternaInputError(self.source, f"image id {identifier!r} is used twice "
+                                     "(two layers' ids clash)")
         vimg = vips_from_array(image) if isinstance(image, np.ndarray) else image
         want_w, want_h = size or (self.width, self.height)
         if (vimg.width, vimg.height) != (want_w, want_h):
@@ -132,7 +133,7 @@ class DatasetWriter:
         """Add a layer: ``{"id", "label", "layerType", "body": image id, ...relight fields}``."""
         check_identifier(layer["id"], "layer id")
         if any(other["id"] == layer["id"] for other in self.layers):
-            raise ValueError(f"layer id {layer['id']!r} added twice")
+            raise LanternaInputError(self.source, f"layer id {layer['id']!r} is used twice")
         if layer["body"] not in self.images:
             raise ValueError(f"layer body image {layer['body']!r} was not added")
         self.layers.append(layer)

@@ -114,4 +114,58 @@ def build_demo(out: Path, *, base_url: str = DEFAULT_BASE_URL, force: bool = Fal
         fc = np.stack([bands["ir"], bands["R"], bands["G"]], axis=-1)
         add_image_layer(ds, vips_from_array(_to_u8(fc)), layer_id="fc_ir_r_g",
                         label="False colour (IR, R, G)", fmt="png")
+    _add_demo_overlays(Path(out), sketch)
     return Path(out)
+
+
+DEMO_TEXTS = {
+    "3": {"short": "An inscribed limestone tablet",
+          "long": "<p>A slab with a moulded frame, a gilded rosette and a two-line incised "
+                  "inscription. Zoom in: each level of detail has its own annotations.</p>"},
+    "2": {"short": "Inscription and inlay",
+          "long": "<p><b>LANTERNA</b> / <i>LVX IN TENEBRIS LVCET</i>, V-cut letters with traces "
+                  "of red paint; a gold rosette set in a raised medallion.</p>"},
+    "1": {"short": "Underdrawing (infrared)",
+          "long": "<p>Ruling lines, a compass circle and a draft signature "
+                  "<i>Q · FABIVS · FECIT</i>, visible only in the infrared band.</p>"},
+    "0": {"short": "Rosette detail",
+          "long": "<p>Eight petals and a central boss in gold leaf; burnished highlights move with "
+                  "the light.</p>"},
+}
+
+
+def _add_demo_overlays(out: Path, sketch: F32) -> None:
+    """Annotate the PTM layer at four levels (patches drawn here, built by the overlay builder)."""
+    import tempfile
+
+    from .overlays import build_overlays
+
+    h, w = sketch.shape
+    cyan, magenta, gold = (40, 220, 255), (255, 60, 200), (255, 200, 40)
+    with tempfile.TemporaryDirectory() as tmp:
+        def patch(level: int, box: tuple[int, int, int, int], order: int, info: str,
+                  draw: object) -> None:
+            x, y, bw, bh = box
+            img = Image.new("RGBA", (bw, bh), (0, 0, 0, 0))
+            draw(ImageDraw.Draw(img), bw, bh)  # type: ignore[operator]
+            img.save(Path(tmp) / f"{level}_{x}_{y}_{bw}_{bh}_{order}_{info}.png")
+
+        def outline(colour: tuple[int, int, int], width: int) -> object:
+            return lambda d, bw, bh: d.rounded_rectangle([width, width, bw - width, bh - width],
+                                                         radius=4 * width,
+                                                         outline=colour + (230,), width=width)
+
+        patch(3, (int(0.08 * w), int(0.08 * h), int(0.84 * w), int(0.84 * h)), 0, "tablet",
+              outline(cyan, 24))
+        patch(2, (int(0.14 * w), int(0.48 * h), int(0.72 * w), int(0.33 * h)), 0, "inscription",
+              outline(cyan, 12))
+        cx, cy, r = int(0.495 * w), int(0.33 * h), int(0.105 * w)
+        patch(2, (cx - int(1.3 * r), cy - int(1.3 * r), int(2.6 * r), int(2.6 * r)), 1, "inlay",
+              outline(gold, 12))
+        tint = np.zeros((h, w, 4), np.uint8)
+        tint[..., :3] = magenta
+        tint[..., 3] = np.rint(np.clip(sketch * 1.6, 0.0, 1.0) * 220).astype(np.uint8)
+        Image.fromarray(tint, "RGBA").save(Path(tmp) / f"1_0_0_{w}_{h}_0_underdrawing.png")
+        patch(0, (cx - r, cy - r, 2 * r, 2 * r), 0, "rosette",
+              lambda d, bw, bh: d.ellipse([6, 6, bw - 6, bh - 6], outline=gold + (240,), width=6))
+        build_overlays(out, "ptm", patches_dir=Path(tmp), texts=DEMO_TEXTS)
