@@ -1,0 +1,138 @@
+/**
+ * The overlay TiledImages of a viewer (`docs/annotations.md`, "Viewer"): one per overlay level
+ * image, made on first use, stretched over the canvas like the layers. Only the active layer's
+ * level matching the current level is visible; the others have opacity 0, so they load nothing.
+ */
+import type OpenSeadragon from 'openseadragon';
+import { fetchJson, type InfoCache } from '../iiif/load';
+import { imageGeometry } from '../iiif/image-info';
+import type { ManifestLayer } from '../iiif/manifest';
+import { overlayAt, type OverlayLevel } from '../iiif/overlays';
+import { addBundleItem } from '../tiles/add-item';
+import { sanitizeHtml } from '../ui/sanitize-html';
+
+/** What {@link OverlayController.state} reports (and `getOverlayState()` returns). */
+export interface OverlayState {
+  /** The viewer's current level (docs/annotations.md formula). */
+  readonly level: number;
+  /** Whether the active layer has an overlay at that level. */
+  readonly available: boolean;
+  /** The level's short text ('' when unavailable). */
+  readonly short: string;
+  /** The level's long text, sanitised HTML ('' when unavailable). */
+  readonly long: string;
+}
+
+/** Options of {@link OverlayController}. */
+export interface OverlayControllerOptions {
+  /** `fetch` options for the info.json requests. */
+  readonly fetchInit?: RequestInit;
+  /** info.json documents already requested. */
+  readonly infoCache: InfoCache;
+  /** Called once per new overlay item (e.g. to tell the drawer how to draw it). */
+  register(item: OpenSeadragon.TiledImage, level: OverlayLevel): void;
+  /** Called when an overlay item could not be opened. */
+  onError(error: unknown): void;
+}
+
+/** The width in viewport units of a level image of `level.width` px when the canvas is `canvasWidth` px (= 1 unit). */
+export function overlayItemWidth(level: OverlayLevel, canvasWidth: number): number {
+  // Level pixel i covers full-resolution pixels [i·2^L, (i+1)·2^L): the last column may overhang.
+  return (level.width * 2 ** level.level) / canvasWidth;
+}
+
+/** The overlay state for a layer at a level. */
+export function overlayState(layer: ManifestLayer | null, level: number): OverlayState {
+  const ov = layer ? overlayAt(layer.overlays, level) : null;
+  return ov ? { level, available: true, short: ov.short, long: sanitizeHtml(ov.long) }
+    : { level, available: false, short: '', long: '' };
+}
+
+/** Creates and shows overlay items. */
+export class OverlayController {
+  readonly #viewer: OpenSeadragon.Viewer;
+  readonly #options: OverlayControllerOptions;
+  readonly #items = new Map<string, Promise<OpenSeadragon.TiledImage>>();
+  readonly #opened = new Map<string, OpenSeadragon.TiledImage>();
+  #wanted = '';
+
+  constructor(viewer: OpenSeadragon.Viewer, options: OverlayControllerOptions) {
+    this.#viewer = viewer;
+    this.#options = options;
+  }
+
+  /** The key of the item shown now ('' = none). */
+  get shownKey(): string {
+    return this.#wanted;
+  }
+
+  /**
+   * Show `layer`'s overlay for `level` (nothing if it has none there, or if `visible` is false);
+   * hide every other overlay item.
+   */
+  show(layer: ManifestLayer | null, level: number, visible: boolean): void {
+    const ov = visible && layer ? overlayAt(layer.overlays, level) : null;
+    const key = ov ? keyOf(ov) : '';
+    if (key === this.#wanted) {
+      return;
+    }
+    this.#wanted = key;
+    for (const [k, item] of this.#opened) {
+      if (k !== key) {
+        item.setOpacity(0);
+      }
+    }
+    if (!ov || !layer) {
+      return;
+    }
+    this.#itemOf(ov, layer.layer.width).then((item) => {
+      if (this.#wanted === key) {
+        item.setOpacity(1);
+      }
+    }).catch((error: unknown) => { this.#options.onError(error); });
+  }
+
+  /** True while the wanted overlay item is still being opened. */
+  isBusy(): boolean {
+    return this.#wanted !== '' && !this.#opened.has(this.#wanted) && this.#items.has(this.#wanted);
+  }
+
+  /** The TiledImage shown now, if it is open. */
+  shownItem(): OpenSeadragon.TiledImage | null {
+    return this.#opened.get(this.#wanted) ?? null;
+  }
+
+  #itemOf(level: OverlayLevel, canvasWidth: number): Promise<OpenSeadragon.TiledImage> {
+    const key = keyOf(level);
+    let pending = this.#items.get(key);
+    if (!pending) {
+      pending = (async () => {
+        const url = `${level.serviceId}/info.json`;
+        let info = this.#options.infoCache.get(url);
+        if (!info) {
+          info = fetchJson(url, this.#options.fetchInit) as Promise<Record<string, unknown>>;
+          this.#options.infoCache.set(url, info);
+        }
+        const json = await info;
+        const item = await addBundleItem(this.#viewer, {
+          infos: [json],
+          geometry: imageGeometry(json, url),
+          formats: ['png'],
+          width: overlayItemWidth(level, canvasWidth),
+          opacity: 0,
+          what: `overlay level ${level.level} of layer ${level.layer}`,
+        });
+        this.#options.register(item, level);
+        this.#opened.set(key, item);
+        return item;
+      })();
+      this.#items.set(key, pending);
+      pending.catch(() => { this.#items.delete(key); });
+    }
+    return pending;
+  }
+}
+
+function keyOf(level: OverlayLevel): string {
+  return `${level.layer}#${level.level}`;
+}
