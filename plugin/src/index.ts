@@ -22,7 +22,7 @@ export {
 export { imageGeometry, commonGeometry, type ImageGeometry } from './iiif/image-info';
 export {
   LanternaError, ManifestError, MissingRelightServiceError, RelightServiceError, ImageInfoError,
-  MismatchedPlanesError, FetchError,
+  MismatchedPlanesError, FetchError, OverlayError,
 } from './iiif/errors';
 export { ShaderError } from './layers/programs';
 export { ptmWeights, relightPtmPixel, BASES, PTM_BASIS_TERMS, type LightBasis } from './math/ptm-basis';
@@ -37,4 +37,15 @@ export {
   DEFAULT_RENDER_PARAMS, PARAM_SPECS, mergeParams, relevantParams, type RenderParams, type RenderParamName,
 } from './render/params';
 export { createControls, type Controls } from './ui/controls';
+export { createLensControls, type LensControls } from './ui/lens-controls';
+export { createHypertext, NO_ANNOTATION_TEXT, type HypertextWidget } from './ui/hypertext';
+export { sanitizeHtml } from './ui/sanitize-html';
 export type { DragMode } from './ui/interaction';
+export { routeGesture, routeWheel, isLensAction, type GestureAction, type GestureStart } from './ui/gesture-routing';
+export {
+  ANNOTATION_DISPLAYS, LensOptionError, type AnnotationDisplay, type LensState, type LensUpdate,
+} from './lens/lens-state';
+export { lensHit, LENS_BORDER_PX, type Circle, type LensHit } from './math/lens';
+export { currentLevel } from './math/levels';
+export { parseOverlays, OVERLAY_SERVICE_TYPE, OVERLAY_PROFILE, type OverlayLevel } from './iiif/overlays';
+export type { OverlayState } from './overlay/overlay-controller';

@@ -1,18 +1,27 @@
 /**
  * `createViewer`: an OpenSeadragon viewer showing the relightable layers of a Lanterna manifest,
- * one TiledImage per layer (inactive layers at opacity 0, so they load nothing).
+ * one TiledImage per layer (inactive layers at opacity 0, so they load nothing), the active layer's
+ * annotation overlay for the current level, and the lens.
  */
 import OpenSeadragon from 'openseadragon';
+import { isCompositor, type Compositor } from './compositor';
 import { RelightDrawer, type PixelData } from './drawer/relight-drawer';
 import { LanternaError } from './iiif/errors';
 import { fetchJson, loadLayer, type InfoCache, type LoadedLayer } from './iiif/load';
 import { parseManifest, type ManifestInfo, type ManifestLayer } from './iiif/manifest';
 import type { LayerType } from './iiif/relight-service';
+import { LensController } from './lens/lens-controller';
+import { initialLens, updateLens, type LensState, type LensUpdate } from './lens/lens-state';
+import { currentLevel, imagePxPerDevicePx, maxLevelOf } from './math/levels';
 import { lightFromPointer, lightFromProjection, type Light } from './math/light';
+import { OverlayController, overlayState, type OverlayState } from './overlay/overlay-controller';
 import { applicableModes, DEFAULT_RENDER_MODE, isRenderMode, shadingClass, type RenderMode } from './render/modes';
 import { DEFAULT_RENDER_PARAMS, mergeParams, type RenderParams } from './render/params';
-import { BundleTileSource } from './tiles/bundle-tile-source';
+import { addBundleItem } from './tiles/add-item';
+import { createHypertext, type HypertextWidget } from './ui/hypertext';
 import { attachInteraction, type DragMode } from './ui/interaction';
+import { attachLensGestures } from './ui/lens-gestures';
+import { createLensRing } from './ui/lens-ring';
 import { createLightWidget, type LightWidget } from './ui/light-widget';
 
 /** Options of {@link createViewer}. */
@@ -29,6 +38,10 @@ export interface CreateViewerOptions {
   layer?: string;
   /** Show the light widget (a draggable, keyboard-controlled disc). @default true */
   lightIndicator?: boolean;
+  /** Show the hypertext widget of the annotation overlays. @default true */
+  hypertext?: boolean;
+  /** Show the annotation overlays. @default true */
+  overlays?: boolean;
   /** Extra OpenSeadragon options (the drawer, navigator and tile sources are set by Lanterna). */
   osd?: Partial<OpenSeadragon.Options>;
   /** `fetch` options for the manifest and info.json requests. */
@@ -83,7 +96,26 @@ export interface LanternaViewer {
   getRenderParams(): RenderParams;
   /** Set every render parameter back to its default. */
   resetRenderParams(): void;
-  /** Call `listener` after any change of light, layer, mode or parameters; returns an unsubscribe function. */
+  /**
+   * Show or hide the active layer's annotation overlays (and the hypertext widget).
+   */
+  setOverlaysVisible(visible: boolean): void;
+  /** Whether overlays are shown. */
+  getOverlaysVisible(): boolean;
+  /**
+   * The current level (docs/annotations.md) and the active layer's overlay there: `available` false
+   * when it has no overlay image at that level; `long` is sanitised HTML.
+   */
+  getOverlayState(): OverlayState;
+  /**
+   * Change the lens (any subset; `params` are merged into the lens's own parameters, `layer` ''
+   * follows the active layer). Throws {@link UnknownLayerError}, {@link RenderModeError} or
+   * `LensOptionError` for bad arguments; resolves once the lens layer is open.
+   */
+  setLens(update: LensUpdate): Promise<void>;
+  /** The lens (`layer` resolved to an id). */
+  getLens(): LensState;
+  /** Call `listener` after any change of light, layer, mode, parameters, lens, overlays or level; returns an unsubscribe function. */
   onChange(listener: () => void): () => void;
   /** Fit the rectangle (x, y, w, h) in image pixels into the viewer, immediately. */
   showImageRegion(x: number, y: number, width: number, height: number): void;
@@ -132,6 +164,9 @@ export function createViewer(options: CreateViewerOptions): LanternaViewer {
   let params: RenderParams = DEFAULT_RENDER_PARAMS;
   let manifest: ManifestInfo | null = null;
   let active: LayerSlot | null = null;
+  let lens: LensState = initialLens(element.clientWidth || 640, element.clientHeight || 480);
+  let overlaysVisible = options.overlays ?? true;
+  let overlayShown: OverlayState = { level: 0, available: false, short: '', long: '' };
   const slots = new Map<string, LayerSlot>();
   const infoCache: InfoCache = new Map();
   const listeners = new Set<() => void>();
@@ -166,11 +201,27 @@ export function createViewer(options: CreateViewerOptions): LanternaViewer {
     return d;
   };
 
-  const changed = (): void => {
-    viewer.forceRedraw();
+  const notify = (): void => {
     for (const l of listeners) {
       l();
     }
+  };
+  const changed = (): void => {
+    viewer.forceRedraw();
+    notify();
+  };
+
+  // Until the drawer draws lenses and overlays, their items are kept out of the drawing.
+  const noCompositor: Compositor = {
+    setLensItem: () => undefined, setOverlayItem: () => undefined, setLens: () => undefined,
+    setOverlayDisplay: () => undefined,
+  };
+  const compositor = (): Compositor => {
+    const d = drawer() as unknown;
+    return isCompositor(d) ? d : noCompositor;
+  };
+  const reportError = (error: unknown): void => {
+    console.warn('[lanterna]', error);
   };
 
   const widget: LightWidget | null = options.lightIndicator === false ? null : createLightWidget(viewer.element, {
@@ -184,48 +235,116 @@ export function createViewer(options: CreateViewerOptions): LanternaViewer {
     changed();
   };
 
+  const lensCircle = (): { x: number; y: number; radius: number } | null =>
+    (lens.enabled ? { x: lens.center[0], y: lens.center[1], radius: lens.radius } : null);
+
+  const gestures = attachLensGestures(viewer, {
+    getLens: lensCircle,
+    setLens: (c) => { void api.setLens({ center: [c.x, c.y], radius: c.radius }); },
+    getDragMode: () => dragMode,
+  });
+
   const detach = attachInteraction(viewer, {
     getMode: () => dragMode,
     moveLight: (x, y, w, h) => {
       light = lightFromPointer(x, y, w, h);
       applyLight();
     },
+    claimed: () => gestures.claimed(),
   });
 
-  const addItem = (loaded: LoadedLayer, opacity: number): Promise<OpenSeadragon.TiledImage> => {
-    const source = new BundleTileSource({
-      infos: loaded.infos,
-      geometry: loaded.geometry,
-      formats: loaded.layer.planes.map((p) => p.format),
-      previewIndex: previewIndex(loaded.layer),
-    });
-    return new Promise((resolve, reject) => {
-      viewer.addTiledImage({
-        tileSource: source as unknown as OpenSeadragon.TileSource,
-        x: 0,
-        y: 0,
-        width: 1,
-        opacity,
-        success: (event: { item: OpenSeadragon.TiledImage }) => {
-          drawer().setLayer(event.item, loaded.layer);
-          resolve(event.item);
-        },
-        error: (event: { message?: string }) => {
-          reject(new LanternaError(`cannot open layer ${loaded.id}: ${event.message ?? 'unknown error'}`));
-        },
-      } as unknown as Parameters<OpenSeadragon.Viewer['addTiledImage']>[0]);
-    });
+  const addItem = (loaded: LoadedLayer, what: string): Promise<OpenSeadragon.TiledImage> => addBundleItem(viewer, {
+    infos: loaded.infos,
+    geometry: loaded.geometry,
+    formats: loaded.layer.planes.map((p) => p.format),
+    previewIndex: previewIndex(loaded.layer),
+    opacity: 0,
+    what,
+  });
+
+  const loadedOf = async (slot: LayerSlot): Promise<LoadedLayer> => {
+    slot.loaded ??= await loadLayer(slot.info, options.fetchInit, infoCache);
+    return slot.loaded;
   };
 
   /** Load a layer's plane information and add its (invisible) TiledImage, once. */
   const itemOf = (slot: LayerSlot): Promise<OpenSeadragon.TiledImage> => {
     slot.item ??= (async () => {
-      slot.loaded ??= await loadLayer(slot.info, options.fetchInit, infoCache);
-      slot.tiledImage = await addItem(slot.loaded, 0);
-      return slot.tiledImage;
+      const loaded = await loadedOf(slot);
+      const item = await addItem(loaded, `layer ${loaded.id}`);
+      drawer().setLayer(item, loaded.layer);
+      slot.tiledImage = item;
+      return item;
     })();
     slot.item.catch(() => { slot.item = undefined; });
     return slot.item;
+  };
+
+  const overlays = new OverlayController(viewer, {
+    fetchInit: options.fetchInit,
+    infoCache,
+    register: (item) => { compositor().setOverlayItem(item); },
+    onError: reportError,
+  });
+  const lensItems = new LensController({
+    createItem: async (layerId) => {
+      const slot = slots.get(layerId);
+      if (!slot) {
+        throw new UnknownLayerError(`no layer ${JSON.stringify(layerId)}`);
+      }
+      const loaded = await loadedOf(slot);
+      const item = await addItem(loaded, `the lens layer ${loaded.id}`);
+      compositor().setLensItem(item, loaded.layer);
+      return item;
+    },
+    onError: reportError,
+    onShown: () => { viewer.forceRedraw(); },
+  });
+  const ring = createLensRing(viewer.element);
+  const hypertext: HypertextWidget | null = options.hypertext === false ? null : createHypertext(viewer.element);
+
+  /** The current level, from the active layer's zoom. */
+  const level = (): number => {
+    const item = active?.tiledImage;
+    const loaded = active?.loaded;
+    if (!item || !loaded) {
+      return 0;
+    }
+    const zoom = item.viewportToImageZoom(viewer.viewport.getZoom(true));
+    return currentLevel(imagePxPerDevicePx(zoom, OpenSeadragon.pixelDensityRatio), maxLevelOf(loaded.geometry.scaleFactors));
+  };
+
+  /** Bring overlays, hypertext and the lens clip in line with the view (cheap; called every frame). */
+  const sync = (): void => {
+    if (destroyed || !active) {
+      return;
+    }
+    const lv = level();
+    overlays.show(active.info, lv, overlaysVisible);
+    lensItems.updateClip();
+    const state = overlayState(active.info, lv);
+    if (state.level !== overlayShown.level || state.available !== overlayShown.available
+      || state.short !== overlayShown.short || state.long !== overlayShown.long) {
+      overlayShown = state;
+      hypertext?.update(state, active.info.overlays.length > 0, overlaysVisible);
+      notify();
+    }
+  };
+  viewer.addHandler('viewport-change', sync);
+  viewer.addHandler('update-viewport', sync);
+
+  const lensLayerId = (): string => lens.layer || active?.info.id || '';
+
+  /** Push the lens to the ring, the lens items and the drawer. */
+  const applyLens = (): Promise<void> => {
+    const circle = lensCircle();
+    ring.update(circle ?? { x: 0, y: 0, radius: 0 }, circle !== null);
+    const c = compositor();
+    c.setLens(circle ? { ...circle, opacity: lens.opacity, mode: lens.mode, params: lens.params } : null);
+    c.setOverlayDisplay(circle ? lens.annotations : 'everywhere');
+    const shown = lensItems.show(lensLayerId(), circle);
+    changed();
+    return shown;
   };
 
   const activate = async (slot: LayerSlot): Promise<void> => {
@@ -246,6 +365,15 @@ export function createViewer(options: CreateViewerOptions): LanternaViewer {
     }
     drawer().prepare(slot.info.layer, renderMode);
     widget?.setLit(shadingClass(slot.info.layer) !== 'flat');
+    overlayShown = { ...overlayShown, level: -1 };
+    sync();
+    if (!lens.layer) {
+      // The lens follows the active layer: keep its mode if it applies there.
+      if (!applicableModes(slot.info.layer).includes(lens.mode)) {
+        lens = { ...lens, mode: DEFAULT_RENDER_MODE };
+      }
+      await applyLens();
+    }
     changed();
   };
 
@@ -267,14 +395,29 @@ export function createViewer(options: CreateViewerOptions): LanternaViewer {
   ready.catch(() => undefined);
 
   const activeItem = (): OpenSeadragon.TiledImage => {
-    const count = viewer.world.getItemCount();
-    for (let i = 0; i < count; i++) {
-      const ti = viewer.world.getItemAt(i);
-      if (ti.getOpacity() > 0) {
-        return ti;
-      }
+    if (!active?.tiledImage) {
+      throw new LanternaError('the layer is not open yet (await ready)');
     }
-    throw new LanternaError('the layer is not open yet (await ready)');
+    return active.tiledImage;
+  };
+
+  /** Check a lens update against the layers; returns the mode to use. */
+  const checkLens = (update: LensUpdate): RenderMode => {
+    const layerId = update.layer ?? lens.layer;
+    const slot = layerId ? slots.get(layerId) : active;
+    if (!slot) {
+      throw new UnknownLayerError(`no layer ${JSON.stringify(layerId)} for the lens `
+        + `(layers: ${[...slots.keys()].join(', ')})`);
+    }
+    const modes = applicableModes(slot.info.layer);
+    if (update.mode !== undefined) {
+      if (!isRenderMode(update.mode) || !modes.includes(update.mode)) {
+        throw new RenderModeError(`lens mode ${JSON.stringify(update.mode)} does not apply to layer `
+          + `${slot.info.id} (${slot.info.layer.layerType}); it supports ${modes.join(', ')}`);
+      }
+      return update.mode;
+    }
+    return modes.includes(lens.mode) ? lens.mode : DEFAULT_RENDER_MODE;
   };
 
   const api: LanternaViewer = {
@@ -324,6 +467,25 @@ export function createViewer(options: CreateViewerOptions): LanternaViewer {
       changed();
     },
     getRenderParams: () => params,
+    setOverlaysVisible(visible: boolean) {
+      overlaysVisible = visible;
+      overlayShown = { ...overlayShown, level: -1 };
+      sync();
+      changed();
+    },
+    getOverlaysVisible: () => overlaysVisible,
+    getOverlayState: () => overlayState(active?.info ?? null, level()),
+    setLens(update: LensUpdate) {
+      const mode = checkLens(update);
+      const next = updateLens(lens, { ...update, mode });
+      const layer = next.layer ? slots.get(next.layer)?.info : active?.info;
+      if (layer && next.enabled) {
+        drawer().prepare(layer.layer, next.mode);
+      }
+      lens = next;
+      return applyLens();
+    },
+    getLens: () => ({ ...lens, layer: lensLayerId() }),
     resetRenderParams() {
       params = DEFAULT_RENDER_PARAMS;
       drawer().setRenderParams(params);
@@ -337,6 +499,7 @@ export function createViewer(options: CreateViewerOptions): LanternaViewer {
       const rect = activeItem().imageToViewportRectangle(x, y, width, height);
       // No viewport.update() here: OSD's own update must see the change to recompute the levels.
       viewer.viewport.fitBounds(rect, true);
+      sync();
       viewer.forceRedraw();
     },
     async whenFullyLoaded() {
@@ -350,7 +513,7 @@ export function createViewer(options: CreateViewerOptions): LanternaViewer {
         }
         const count = viewer.world.getItemCount();
         let loaded = false;
-        let allLoaded = true;
+        let allLoaded = !overlays.isBusy() && !lensItems.isBusy();
         for (let i = 0; i < count; i++) {
           const ti = viewer.world.getItemAt(i);
           if (ti.getOpacity() > 0) {
@@ -373,6 +536,9 @@ export function createViewer(options: CreateViewerOptions): LanternaViewer {
       destroyed = true;
       listeners.clear();
       detach();
+      gestures.destroy();
+      ring.destroy();
+      hypertext?.destroy();
       widget?.destroy();
       viewer.destroy();
     },

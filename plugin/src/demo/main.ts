@@ -2,7 +2,7 @@
  * The viewer page: `index.html?manifest=URL[&layer=ID][&mode=MODE]`. Exposes the viewer as
  * `window.lanterna`.
  */
-import { createControls, createViewer, type LanternaViewer, type RenderMode } from '../index';
+import { createControls, createLensControls, createViewer, type LanternaViewer, type RenderMode } from '../index';
 
 declare global {
   interface Window {
@@ -39,6 +39,19 @@ if (!manifest) {
     modeButton.setAttribute('aria-pressed', String(next === 'light'));
   });
   homeButton?.addEventListener('click', () => { lanterna.viewer.viewport.goHome(); });
+  const lensButton = document.getElementById('lens');
+  const overlaysButton = document.getElementById('overlays');
+  const syncButtons = (): void => {
+    lensButton?.setAttribute('aria-pressed', String(lanterna.getLens().enabled));
+    overlaysButton?.setAttribute('aria-pressed', String(lanterna.getOverlaysVisible()));
+  };
+  lensButton?.addEventListener('click', () => {
+    lanterna.setLens({ enabled: !lanterna.getLens().enabled }).catch(showError);
+  });
+  overlaysButton?.addEventListener('click', () => {
+    lanterna.setOverlaysVisible(!lanterna.getOverlaysVisible());
+  });
+  lanterna.onChange(syncButtons);
   lanterna.ready.then(() => {
     const text = lanterna.manifest?.label ?? '';
     if (label) {
@@ -50,7 +63,12 @@ if (!manifest) {
     }
     if (panel) {
       createControls(lanterna, panel, showError);
+      createLensControls(lanterna, panel, showError);
       panel.hidden = false;
     }
+    if (overlaysButton) {
+      overlaysButton.hidden = !lanterna.manifest?.layers.some((l) => l.overlays.length > 0);
+    }
+    syncButtons();
   }).catch(showError);
 }

@@ -13,6 +13,8 @@ export interface InteractionOptions {
   getMode(): DragMode;
   /** Called with the pointer position in the viewer element (CSS px) and the element size. */
   moveLight(x: number, y: number, width: number, height: number): void;
+  /** True while another handler (the lens) owns the current gesture: no light, no pan. */
+  claimed?(): boolean;
 }
 
 interface PointerEventArgs {
@@ -36,25 +38,35 @@ export function attachInteraction(viewer: OpenSeadragon.Viewer, options: Interac
   const light = (e: PointerEventArgs): void => {
     options.moveLight(e.position.x, e.position.y, element.clientWidth, element.clientHeight);
   };
+  const claimed = (): boolean => options.claimed?.() ?? false;
   const onPress = (e: PointerEventArgs): void => {
+    if (claimed()) {
+      lightDrag = false;
+      e.preventDefaultAction = true;
+      return;
+    }
     lightDrag = drivesLight(shiftOf(e));
     if (lightDrag) {
       light(e);
     }
   };
   const onDrag = (e: PointerEventArgs): void => {
+    if (claimed()) {
+      e.preventDefaultAction = true;
+      return;
+    }
     if (lightDrag || drivesLight(shiftOf(e))) {
       e.preventDefaultAction = true;
       light(e);
     }
   };
   const onDragEnd = (e: PointerEventArgs): void => {
-    if (lightDrag) {
+    if (lightDrag || claimed()) {
       e.preventDefaultAction = true; // no flick
     }
   };
   const onClick = (e: PointerEventArgs): void => {
-    if (lightDrag) {
+    if (lightDrag || claimed()) {
       e.preventDefaultAction = true; // no click-to-zoom while lighting
     }
   };
