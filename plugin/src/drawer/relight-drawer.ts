@@ -8,7 +8,7 @@ import { LanternaError } from '../iiif/errors';
 import type { RelightLayer } from '../iiif/relight-service';
 import type { Stage } from '../gl/glsl/modes.glsl';
 import { layerUniforms, type LayerUniforms } from '../layers/layer-uniforms';
-import { ProgramCache, programKind, type ProgramKind } from '../layers/programs';
+import { ProgramCache, programSpec, type ProgramSpec } from '../layers/programs';
 import { lightFromProjection, OVERHEAD_LIGHT, type Light } from '../math/light';
 import { modelMatrix, multiply, viewMatrix, type Mat3 } from '../math/matrix';
 import { modeFilter } from '../render/filter-plan';
@@ -183,13 +183,14 @@ export class RelightDrawer extends OpenSeadragon.DrawerBase {
     if (!this.programs) {
       return;
     }
-    const kind = programKind(layer);
+    const kind = programSpec(layer);
+    const gammaOne = this.params.gamma === 1;
     if (modeFilter(mode)) {
       this.screenFilter ??= new ScreenFilter(this.gl);
-      this.programs.get(kind, mode, 'quantity');
-      this.programs.get(kind, mode, 'combine');
+      this.programs.get(kind, mode, 'quantity', gammaOne);
+      this.programs.get(kind, mode, 'combine', gammaOne);
     } else {
-      this.programs.get(kind, mode, 'direct');
+      this.programs.get(kind, mode, 'direct', gammaOne);
     }
   }
 
@@ -311,7 +312,7 @@ export class RelightDrawer extends OpenSeadragon.DrawerBase {
         continue;
       }
       const mode = applicableModes(layer).includes(this.mode) ? this.mode : DEFAULT_RENDER_MODE;
-      const kind = programKind(layer);
+      const kind = programSpec(layer);
       const uniforms = layerUniforms(layer, this.light.lu, this.light.lv, this.params);
       const itemMatrix = multiply(view, this.itemRotation(item));
       const filter = modeFilter(mode);
@@ -335,13 +336,13 @@ export class RelightDrawer extends OpenSeadragon.DrawerBase {
   }
 
   /** Draw an item's tiles (coarse level first, finer over them: painter's algorithm, opaque). */
-  private drawTiles(kind: ProgramKind, mode: RenderMode, stage: Stage, uniforms: LayerUniforms,
+  private drawTiles(kind: ProgramSpec, mode: RenderMode, stage: Stage, uniforms: LayerUniforms,
     itemMatrix: Mat3, tiles: TileLike[], filtered: WebGLTexture | null): void {
     const gl = this.gl;
     if (!this.programs || !this.samplers) {
       return;
     }
-    const programInfo = this.programs.get(kind, mode, stage);
+    const programInfo = this.programs.get(kind, mode, stage, this.params.gamma === 1);
     gl.useProgram(programInfo.program);
     twgl.setUniforms(programInfo, uniforms);
     gl.uniform1i(gl.getUniformLocation(programInfo.program, U_PLANES), 0);

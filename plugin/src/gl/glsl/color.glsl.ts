@@ -22,12 +22,13 @@ vec3 srgb_to_linear(vec3 x) {
   return mix(hi, lo, vec3(lessThanEqual(x, vec3(0.04045))));
 }
 
-// post: out = clamp01(clamp01(c)^(1/gamma) + brightness)
+// post: out = clamp01(clamp01(c)^(1/gamma) + brightness). GAMMA_ONE (compile time) skips the pow
+// when gamma = 1: a CPU rasteriser runs both sides of a branch on a uniform.
 vec3 lanterna_post(vec3 c) {
   c = clamp01(c);
-  if (${U_PARAM.gamma} != 1.0) {
-    c = pow(c, vec3(1.0 / ${U_PARAM.gamma}));
-  }
+#if !GAMMA_ONE
+  c = pow(c, vec3(1.0 / ${U_PARAM.gamma}));
+#endif
   return clamp01(c + ${U_PARAM.brightness});
 }
 
