@@ -14,8 +14,8 @@
 // fit the image-pixel region to the viewport, apply `lens` (optional, the argument of setLens), run the
 // optional synthetic input `gestures`, wait until every tile is loaded and drawn, read the frame back
 // (RGBA, rows top-down) and write the raw bytes to `out` and {width, height, overlayState, lens,
-// light, view: {center, zoom}, requests} to `out + ".json"` (`requests`: the URLs the page requested
-// during the shot). One JSON line per shot goes to stdout. Exits non-zero on a page error, a console
+// light, view: {center, zoom}, hypertext, requests} to `out + ".json"` (`hypertext`: the widget's
+// short line; `requests`: the URLs the page requested during the shot). One JSON line per shot goes to stdout. Exits non-zero on a page error, a console
 // error, or a step taking longer than timeoutMs (default 60 s).
 //
 // Gesture steps (x, y in CSS px of the viewer element; `steps` intermediate moves, default 8):
@@ -196,6 +196,7 @@ async function main() {
           width, height, base64: btoa(binary), layer: l.getActiveLayer(), mode: l.getRenderMode(),
           overlayState: l.getOverlayState?.() ?? null, lens: l.getLens?.() ?? null, light: l.getLight(),
           view: { center: [center.x, center.y], zoom: l.viewer.viewport.getZoom(true) },
+          hypertext: document.querySelector('.lanterna-hypertext-short')?.textContent ?? null,
         };
       }), timeoutMs, `shot ${JSON.stringify(shot)}`);
       check();
@@ -206,7 +207,7 @@ async function main() {
       writeFileSync(shot.out, bytes);
       writeFileSync(`${shot.out}.json`, JSON.stringify({
         width: result.width, height: result.height, overlayState: result.overlayState, lens: result.lens,
-        light: result.light, view: result.view, requests,
+        light: result.light, view: result.view, hypertext: result.hypertext, requests,
       }));
       process.stdout.write(`${JSON.stringify({
         out: shot.out, width: result.width, height: result.height, light: shot.light, region: shot.region,
