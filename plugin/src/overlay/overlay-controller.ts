@@ -9,19 +9,9 @@ import { imageGeometry } from '../iiif/image-info';
 import type { ManifestLayer } from '../iiif/manifest';
 import { overlayAt, type OverlayLevel } from '../iiif/overlays';
 import { addBundleItem } from '../tiles/add-item';
-import { sanitizeHtml } from '../ui/sanitize-html';
+import { overlayItemWidth } from './overlay-state';
 
-/** What {@link OverlayController.state} reports (and `getOverlayState()` returns). */
-export interface OverlayState {
-  /** The viewer's current level (docs/annotations.md formula). */
-  readonly level: number;
-  /** Whether the active layer has an overlay at that level. */
-  readonly available: boolean;
-  /** The level's short text ('' when unavailable). */
-  readonly short: string;
-  /** The level's long text, sanitised HTML ('' when unavailable). */
-  readonly long: string;
-}
+export { overlayItemWidth, overlayState, type OverlayState } from './overlay-state';
 
 /** Options of {@link OverlayController}. */
 export interface OverlayControllerOptions {
@@ -33,19 +23,6 @@ export interface OverlayControllerOptions {
   register(item: OpenSeadragon.TiledImage, level: OverlayLevel): void;
   /** Called when an overlay item could not be opened. */
   onError(error: unknown): void;
-}
-
-/** The width in viewport units of a level image of `level.width` px when the canvas is `canvasWidth` px (= 1 unit). */
-export function overlayItemWidth(level: OverlayLevel, canvasWidth: number): number {
-  // Level pixel i covers full-resolution pixels [i·2^L, (i+1)·2^L): the last column may overhang.
-  return (level.width * 2 ** level.level) / canvasWidth;
-}
-
-/** The overlay state for a layer at a level. */
-export function overlayState(layer: ManifestLayer | null, level: number): OverlayState {
-  const ov = layer ? overlayAt(layer.overlays, level) : null;
-  return ov ? { level, available: true, short: ov.short, long: sanitizeHtml(ov.long) }
-    : { level, available: false, short: '', long: '' };
 }
 
 /** Creates and shows overlay items. */
