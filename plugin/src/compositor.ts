@@ -28,10 +28,3 @@ export interface Compositor {
   /** Where overlays are drawn relative to the lens (ignored while the lens is off). */
   setOverlayDisplay(display: AnnotationDisplay): void;
 }
-
-/** Whether a drawer implements {@link Compositor}. */
-export function isCompositor(drawer: unknown): drawer is Compositor {
-  const d = drawer as Partial<Compositor> | null;
-  return typeof d?.setLensItem === 'function' && typeof d.setOverlayItem === 'function'
-    && typeof d.setLens === 'function' && typeof d.setOverlayDisplay === 'function';
-}

@@ -4,7 +4,7 @@
  * annotation overlay for the current level, and the lens.
  */
 import OpenSeadragon from 'openseadragon';
-import { isCompositor, type Compositor } from './compositor';
+import type { Compositor } from './compositor';
 import { RelightDrawer, type PixelData } from './drawer/relight-drawer';
 import { LanternaError } from './iiif/errors';
 import { fetchJson, loadLayer, type InfoCache, type LoadedLayer } from './iiif/load';
@@ -211,15 +211,7 @@ export function createViewer(options: CreateViewerOptions): LanternaViewer {
     notify();
   };
 
-  // Until the drawer draws lenses and overlays, their items are kept out of the drawing.
-  const noCompositor: Compositor = {
-    setLensItem: () => undefined, setOverlayItem: () => undefined, setLens: () => undefined,
-    setOverlayDisplay: () => undefined,
-  };
-  const compositor = (): Compositor => {
-    const d = drawer() as unknown;
-    return isCompositor(d) ? d : noCompositor;
-  };
+  const compositor = (): Compositor => drawer();
   const reportError = (error: unknown): void => {
     console.warn('[lanterna]', error);
   };
@@ -480,7 +472,7 @@ export function createViewer(options: CreateViewerOptions): LanternaViewer {
       const next = updateLens(lens, { ...update, mode });
       const layer = next.layer ? slots.get(next.layer)?.info : active?.info;
       if (layer && next.enabled) {
-        drawer().prepare(layer.layer, next.mode);
+        drawer().prepare(layer.layer, next.mode, next.params);
       }
       lens = next;
       return applyLens();

@@ -42,9 +42,7 @@ RED, GREEN = (230, 20, 20), (20, 210, 40)
 PATCHES = {0: (RED, (160, 140, 120, 90)), 1: (GREEN, (220, 160, 240, 200))}
 TEXTS = {"0": {"short": "Glyph detail", "long": "<p>A <b>glyph</b>.<script>bad()</script></p>"},
          "1": {"short": "Whole panel", "long": "<p>The panel.</p>"}}
-ORIGIN = {1: (120, 100), 2: (60, 50), 4: (20, 10)}  # zoom factor → region origin in level px
-#: The drawer does not composite lenses and overlays yet (the viewer creates their items).
-NOT_DRAWN_YET = pytest.mark.xfail(strict=True, reason="drawer integration of lens and overlays")
+ORIGIN = {1: (120, 100), 2: (60, 50), 4: (0, 0)}  # zoom factor → region origin in level px
 
 
 def smooth(rng: np.random.Generator, lo: float, hi: float, shape: tuple[int, ...] = (),
@@ -206,7 +204,6 @@ def zoom_shots(dataset: Dataset) -> Iterator[list[tuple[LensShot, npt.NDArray[np
     yield list(zip(shots, frames, strict=True))
 
 
-@NOT_DRAWN_YET
 def test_overlay_of_level_k_is_drawn_only_at_zoom_k(
         dataset: Dataset, zoom_shots: list[tuple[LensShot, npt.NDArray[np.uint8]]]) -> None:
     everywhere = np.ones((VIEW[1], VIEW[0]), bool)
@@ -276,7 +273,6 @@ def lens_shots(dataset: Dataset) -> Iterator[dict[str, tuple[LensShot, npt.NDArr
     yield {k: (s, f) for (k, s), f in zip(named.items(), frames, strict=True)}
 
 
-@NOT_DRAWN_YET
 def test_lens_shows_the_second_layer_inside_and_the_base_outside(
         dataset: Dataset, lens_shots: dict[str, tuple[LensShot, npt.NDArray[np.uint8]]]) -> None:
     (cx, cy), r = LENS_C, LENS_R
@@ -292,7 +288,6 @@ def test_lens_shows_the_second_layer_inside_and_the_base_outside(
     assert_close(frame, base, np.ones(frame.shape[:2], bool), "lens off")
 
 
-@NOT_DRAWN_YET
 def test_lens_opacity_blends_over_the_base(
         dataset: Dataset, lens_shots: dict[str, tuple[LensShot, npt.NDArray[np.uint8]]]) -> None:
     _, frame = lens_shots["half"]
@@ -305,7 +300,6 @@ def test_lens_opacity_blends_over_the_base(
                  "outside a half-opaque lens")
 
 
-@NOT_DRAWN_YET
 @pytest.mark.parametrize("display", ["inside", "outside"])
 def test_annotations_only_inside_or_outside_the_lens(
         dataset: Dataset, lens_shots: dict[str, tuple[LensShot, npt.NDArray[np.uint8]]],

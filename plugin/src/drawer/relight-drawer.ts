@@ -1,21 +1,31 @@
 /**
  * `RelightDrawer`: an OpenSeadragon drawer that relights plane bundles with WebGL2, straight into
  * its own on-screen canvas. This is the only module that touches OpenSeadragon drawer internals.
+ *
+ * A frame is drawn in three steps: the base layers (opaque), the lens layer (into a target, then
+ * composited inside the lens circle with its opacity), then the annotation overlays (premultiplied
+ * source-over, everywhere or only inside or outside the lens).
  */
 import OpenSeadragon from 'openseadragon';
 import * as twgl from 'twgl.js';
 import { LanternaError } from '../iiif/errors';
 import type { RelightLayer } from '../iiif/relight-service';
+import type { Compositor, DrawerLens } from '../compositor';
+import { OVERLAY_FRAGMENT_SHADER } from '../gl/glsl/composite.glsl';
 import type { Stage } from '../gl/glsl/modes.glsl';
+import { QUAD_VERTEX_SHADER } from '../gl/glsl/quad.vert';
+import type { AnnotationDisplay } from '../lens/lens-state';
+import { lensInDevicePixels } from '../math/lens';
 import { layerUniforms, type LayerUniforms } from '../layers/layer-uniforms';
-import { ProgramCache, programSpec, type ProgramSpec } from '../layers/programs';
+import { compileProgram, ProgramCache, programSpec, type ProgramSpec } from '../layers/programs';
 import { lightFromProjection, OVERHEAD_LIGHT, type Light } from '../math/light';
 import { modelMatrix, multiply, viewMatrix, type Mat3 } from '../math/matrix';
 import { modeFilter } from '../render/filter-plan';
 import { applicableModes, DEFAULT_RENDER_MODE, type RenderMode } from '../render/modes';
 import { DEFAULT_RENDER_PARAMS, type RenderParams } from '../render/params';
 import { BUNDLE_DATA_TYPE, type PlaneBundle } from '../tiles/bundle';
-import { U_FILTERED, U_MATRIX, U_PLANES, U_TEX_SCALE } from '../gl/uniforms';
+import { U_FILTERED, U_LENS_CIRCLE, U_MASK, U_MATRIX, U_PLANES, U_TEX_SCALE } from '../gl/uniforms';
+import { LensTarget, scissorBox, type DeviceCircle } from './lens-target';
 import { createSamplers, uploadPlaneBundle } from './plane-texture';
 import { ScreenFilter } from './screen-filter';
 
@@ -63,11 +73,17 @@ const CONTEXT_ATTRIBUTES: WebGLContextAttributes = {
   preserveDrawingBuffer: false,
 };
 
+/** Overlay mask `(a, b)`: `m = a + b · inside`. */
+const MASKS: Readonly<Record<AnnotationDisplay, [number, number]>> = {
+  everywhere: [1, 0], inside: [0, 1], outside: [1, -1],
+};
+
 /**
  * OpenSeadragon drawer for Lanterna layers. Pass the class as the viewer's `drawer` option, then
- * register each relightable TiledImage with {@link RelightDrawer.setLayer}.
+ * register each relightable TiledImage with {@link RelightDrawer.setLayer} (base layers),
+ * {@link RelightDrawer.setLensItem} (the lens) or {@link RelightDrawer.setOverlayItem} (overlays).
  */
-export class RelightDrawer extends OpenSeadragon.DrawerBase {
+export class RelightDrawer extends OpenSeadragon.DrawerBase implements Compositor {
   declare private gl: WebGL2RenderingContext;
   declare private programs: ProgramCache | null;
   declare private screenFilter: ScreenFilter | null;
@@ -75,6 +91,11 @@ export class RelightDrawer extends OpenSeadragon.DrawerBase {
   declare private params: RenderParams;
   declare private samplers: { linear: WebGLSampler; nearest: WebGLSampler } | null;
   declare private layers: WeakMap<object, RelightLayer>;
+  declare private roles: WeakMap<object, 'lens' | 'overlay'>;
+  declare private lens: DrawerLens | null;
+  declare private overlayDisplay: AnnotationDisplay;
+  declare private lensTarget: LensTarget | null;
+  declare private overlayProgram: twgl.ProgramInfo | null;
   declare private light: Light;
   declare private smoothing: boolean;
   declare private generation: number;
@@ -86,6 +107,11 @@ export class RelightDrawer extends OpenSeadragon.DrawerBase {
   constructor(options: ConstructorParameters<typeof OpenSeadragon.DrawerBase>[0]) {
     super(options);
     this.layers = new WeakMap();
+    this.roles = new WeakMap();
+    this.lens = null;
+    this.overlayDisplay = 'everywhere';
+    this.lensTarget = null;
+    this.overlayProgram = null;
     this.light = OVERHEAD_LIGHT;
     this.smoothing = true;
     this.generation = 0;
@@ -107,6 +133,8 @@ export class RelightDrawer extends OpenSeadragon.DrawerBase {
       this.generation++;
       this.programs?.clear();
       this.screenFilter = null;
+      this.lensTarget = null;
+      this.overlayProgram = null;
       this.setupGl();
       this.setInternalCacheNeedsRefresh();
       this.viewer.forceRedraw();
@@ -145,6 +173,30 @@ export class RelightDrawer extends OpenSeadragon.DrawerBase {
     this.layers.set(tiledImage, layer);
   }
 
+  /** Draw `tiledImage` as the lens layer: inside the lens only (see {@link RelightDrawer.setLens}). */
+  setLensItem(tiledImage: object, layer: RelightLayer): void {
+    this.layers.set(tiledImage, layer);
+    this.roles.set(tiledImage, 'lens');
+  }
+
+  /** Draw `tiledImage` (a one-plane bundle of RGBA with straight alpha) as an annotation overlay. */
+  setOverlayItem(tiledImage: object): void {
+    this.roles.set(tiledImage, 'overlay');
+  }
+
+  /**
+   * The lens (circle in CSS px of the viewer element, opacity, the lens layer's mode and
+   * parameters), or null when it is off. Call `viewer.forceRedraw()` afterwards.
+   */
+  setLens(lens: DrawerLens | null): void {
+    this.lens = lens;
+  }
+
+  /** Where overlays show relative to the lens (ignored while the lens is off). */
+  setOverlayDisplay(display: AnnotationDisplay): void {
+    this.overlayDisplay = display;
+  }
+
   /** Set the light (clamped to the unit disk). Call `viewer.forceRedraw()` afterwards. */
   setLight(lu: number, lv: number): void {
     this.light = lightFromProjection(lu, lv);
@@ -179,12 +231,12 @@ export class RelightDrawer extends OpenSeadragon.DrawerBase {
    *
    * @throws {@link ShaderError} or {@link FloatTargetsUnavailableError}
    */
-  prepare(layer: RelightLayer, mode: RenderMode): void {
+  prepare(layer: RelightLayer, mode: RenderMode, params: RenderParams = this.params): void {
     if (!this.programs) {
       return;
     }
     const kind = programSpec(layer);
-    const gammaOne = this.params.gamma === 1;
+    const gammaOne = params.gamma === 1;
     if (modeFilter(mode)) {
       this.screenFilter ??= new ScreenFilter(this.gl);
       this.programs.get(kind, mode, 'quantity', gammaOne);
@@ -262,6 +314,10 @@ export class RelightDrawer extends OpenSeadragon.DrawerBase {
     this.destroyInternalCache();
     this.programs?.clear();
     this.screenFilter?.destroy();
+    this.lensTarget?.destroy();
+    if (this.overlayProgram && !this.gl.isContextLost()) {
+      this.gl.deleteProgram(this.overlayProgram.program);
+    }
     super.destroy();
     this.canvas.removeEventListener('webglcontextlost', this.onLost);
     this.canvas.removeEventListener('webglcontextrestored', this.onRestored);
@@ -306,28 +362,33 @@ export class RelightDrawer extends OpenSeadragon.DrawerBase {
     gl.clearColor(0, 0, 0, 0);
     gl.clear(gl.COLOR_BUFFER_BIT);
     const view = this.currentViewMatrix();
+    let lensEntry: { item: TiledImageLike; tiles: TileLike[]; layer: RelightLayer } | null = null;
+    const overlays: { item: TiledImageLike; tiles: TileLike[] }[] = [];
     for (const { item, tiles } of this.lastFrame) {
+      if (item.getOpacity() === 0 || tiles.length === 0) {
+        continue;
+      }
+      const role = this.roles.get(item);
       const layer = this.layers.get(item);
-      if (!layer || item.getOpacity() === 0 || tiles.length === 0) {
-        continue;
+      if (role === 'overlay') {
+        overlays.push({ item, tiles });
+      } else if (layer && role === 'lens') {
+        lensEntry = { item, tiles, layer };
+      } else if (layer) {
+        this.drawLayer(item, tiles, layer, this.mode, this.params, view, null);
       }
-      const mode = applicableModes(layer).includes(this.mode) ? this.mode : DEFAULT_RENDER_MODE;
-      const kind = programSpec(layer);
-      const uniforms = layerUniforms(layer, this.light.lu, this.light.lv, this.params);
-      const itemMatrix = multiply(view, this.itemRotation(item));
-      const filter = modeFilter(mode);
-      if (!filter) {
-        this.drawTiles(kind, mode, 'direct', uniforms, itemMatrix, tiles, null);
-        continue;
-      }
-      // Screen-space unsharp masking: quantity for the whole view, box passes, then combine.
-      this.screenFilter ??= new ScreenFilter(gl);
-      this.screenFilter.beginQuantity(gl.drawingBufferWidth, gl.drawingBufferHeight);
-      this.drawTiles(kind, mode, 'quantity', uniforms, itemMatrix, tiles, null);
-      const filtered = this.screenFilter.filter(filter);
-      gl.bindFramebuffer(gl.FRAMEBUFFER, null);
-      gl.viewport(0, 0, gl.drawingBufferWidth, gl.drawingBufferHeight);
-      this.drawTiles(kind, mode, 'combine', uniforms, itemMatrix, tiles, filtered);
+    }
+    const circle = this.lens ? this.deviceCircle(this.lens) : null;
+    if (this.lens && circle && lensEntry && this.lens.opacity > 0) {
+      const box = scissorBox(circle, gl.drawingBufferWidth, gl.drawingBufferHeight);
+      this.lensTarget ??= new LensTarget(gl);
+      this.lensTarget.begin(gl.drawingBufferWidth, gl.drawingBufferHeight, box);
+      this.drawLayer(lensEntry.item, lensEntry.tiles, lensEntry.layer, this.lens.mode, this.lens.params, view,
+        this.lensTarget.framebuffer, box);
+      this.lensTarget.composite(circle, this.lens.opacity, box);
+    }
+    if (overlays.length > 0) {
+      this.drawOverlays(overlays, view, circle);
     }
     gl.activeTexture(gl.TEXTURE1);
     gl.bindTexture(gl.TEXTURE_2D, null);
@@ -335,14 +396,97 @@ export class RelightDrawer extends OpenSeadragon.DrawerBase {
     gl.bindSampler(0, null);
   }
 
+  /** The lens in device pixels, y up. */
+  private deviceCircle(lens: DrawerLens): DeviceCircle {
+    return lensInDevicePixels(lens, OpenSeadragon.pixelDensityRatio, this.gl.drawingBufferHeight);
+  }
+
+  /**
+   * Relight one item into `target` (null = the canvas) in `mode` with `params`; `box` is a scissor
+   * box applied to the final stage (the unsharp modes filter the whole view first).
+   */
+  private drawLayer(item: TiledImageLike, tiles: TileLike[], layer: RelightLayer, requested: RenderMode,
+    params: RenderParams, view: Mat3, target: WebGLFramebuffer | null,
+    box: readonly [number, number, number, number] | null = null): void {
+    const gl = this.gl;
+    const mode = applicableModes(layer).includes(requested) ? requested : DEFAULT_RENDER_MODE;
+    const kind = programSpec(layer);
+    const uniforms = layerUniforms(layer, this.light.lu, this.light.lv, params);
+    const itemMatrix = multiply(view, this.itemRotation(item));
+    const gammaOne = params.gamma === 1;
+    const filter = modeFilter(mode);
+    const bindTarget = (): void => {
+      gl.bindFramebuffer(gl.FRAMEBUFFER, target);
+      gl.viewport(0, 0, gl.drawingBufferWidth, gl.drawingBufferHeight);
+      if (box) {
+        gl.enable(gl.SCISSOR_TEST);
+        gl.scissor(box[0], box[1], box[2], box[3]);
+      }
+    };
+    if (!filter) {
+      bindTarget();
+      this.drawTiles(kind, mode, 'direct', uniforms, itemMatrix, tiles, null, gammaOne);
+      gl.disable(gl.SCISSOR_TEST);
+      return;
+    }
+    // Screen-space unsharp masking: quantity for the whole view, box passes, then combine.
+    gl.disable(gl.SCISSOR_TEST);
+    this.screenFilter ??= new ScreenFilter(gl);
+    this.screenFilter.beginQuantity(gl.drawingBufferWidth, gl.drawingBufferHeight);
+    this.drawTiles(kind, mode, 'quantity', uniforms, itemMatrix, tiles, null, gammaOne);
+    const filtered = this.screenFilter.filter(filter);
+    bindTarget();
+    this.drawTiles(kind, mode, 'combine', uniforms, itemMatrix, tiles, filtered, gammaOne);
+    gl.disable(gl.SCISSOR_TEST);
+  }
+
+  /** Draw overlay tiles over the frame, premultiplied source-over, masked by the lens. */
+  private drawOverlays(entries: { item: TiledImageLike; tiles: TileLike[] }[], view: Mat3,
+    circle: DeviceCircle | null): void {
+    const gl = this.gl;
+    if (!this.samplers) {
+      return;
+    }
+    this.overlayProgram ??= compileProgram(gl, QUAD_VERTEX_SHADER, OVERLAY_FRAGMENT_SHADER, 'overlay');
+    const program = this.overlayProgram;
+    gl.bindFramebuffer(gl.FRAMEBUFFER, null);
+    gl.viewport(0, 0, gl.drawingBufferWidth, gl.drawingBufferHeight);
+    gl.useProgram(program.program);
+    gl.uniform1i(gl.getUniformLocation(program.program, U_PLANES), 0);
+    twgl.setUniforms(program, {
+      [U_LENS_CIRCLE]: circle ? [circle.x, circle.y, circle.radius] : [0, 0, 0],
+      [U_MASK]: MASKS[circle ? this.overlayDisplay : 'everywhere'],
+    });
+    gl.activeTexture(gl.TEXTURE0);
+    gl.bindSampler(0, this.smoothing ? this.samplers.linear : this.samplers.nearest);
+    gl.enable(gl.BLEND);
+    gl.blendFunc(gl.ONE, gl.ONE_MINUS_SRC_ALPHA);
+    for (const { item, tiles } of entries) {
+      const itemMatrix = multiply(view, this.itemRotation(item));
+      for (const tile of tiles) {
+        const data = this.getDataToDraw(tile as unknown as OpenSeadragon.Tile) as TileTexture | undefined;
+        if (!data?.texture) {
+          continue;
+        }
+        gl.bindTexture(gl.TEXTURE_2D_ARRAY, data.texture);
+        twgl.setUniforms(program, {
+          [U_MATRIX]: new Float32Array(multiply(itemMatrix, modelMatrix(tile.positionedBounds, tile.flipped === true))),
+          [U_TEX_SCALE]: data.texScale,
+        });
+        gl.drawArrays(gl.TRIANGLE_STRIP, 0, 4);
+      }
+    }
+    gl.disable(gl.BLEND);
+  }
+
   /** Draw an item's tiles (coarse level first, finer over them: painter's algorithm, opaque). */
   private drawTiles(kind: ProgramSpec, mode: RenderMode, stage: Stage, uniforms: LayerUniforms,
-    itemMatrix: Mat3, tiles: TileLike[], filtered: WebGLTexture | null): void {
+    itemMatrix: Mat3, tiles: TileLike[], filtered: WebGLTexture | null, gammaOne: boolean): void {
     const gl = this.gl;
     if (!this.programs || !this.samplers) {
       return;
     }
-    const programInfo = this.programs.get(kind, mode, stage, this.params.gamma === 1);
+    const programInfo = this.programs.get(kind, mode, stage, gammaOne);
     gl.useProgram(programInfo.program);
     twgl.setUniforms(programInfo, uniforms);
     gl.uniform1i(gl.getUniformLocation(programInfo.program, U_PLANES), 0);

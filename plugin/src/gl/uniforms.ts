@@ -60,3 +60,10 @@ export const U_PARAM: Readonly<Record<RenderParamName, string>> = {
 export const MAX_PLANES = 16;
 /** Largest number of basis terms (HSH16). */
 export const MAX_TERMS = 16;
+
+/** vec3: the lens circle (x, y, radius) in device pixels, `gl_FragCoord` space (y up). */
+export const U_LENS_CIRCLE = 'u_lensCircle';
+/** vec2: overlay mask `m = u_mask.x + u_mask.y · inside` (everywhere (1, 0), inside (0, 1), outside (1, −1)). */
+export const U_MASK = 'u_mask';
+/** float: opacity of the lens layer over the base layer. */
+export const U_OPACITY = 'u_opacity';
