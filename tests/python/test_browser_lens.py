@@ -259,6 +259,9 @@ def lens_shots(dataset: Dataset) -> Iterator[dict[str, tuple[LensShot, npt.NDArr
                            lens={**LENS, "layer": "second", "mode": "color"}),
         "normals": LensShot(LIGHT, region(1), out / "normals.rgba", overlays=False,
                             lens={**LENS, "layer": "base", "mode": "normals"}),
+        "unsharp": LensShot(LIGHT, region(1), out / "unsharp.rgba", overlays=False,
+                            lens={**LENS, "layer": "base", "mode": "unsharpLuminance",
+                                  "params": {"umGain": 3.0}}),
         "half": LensShot(LIGHT, region(1), out / "half.rgba", overlays=False,
                          lens={**LENS, "layer": "second", "mode": "color", "opacity": 0.5}),
         "inside": LensShot(LIGHT, region(1), out / "inside.rgba", overlays=True,
@@ -286,6 +289,32 @@ def test_lens_shows_the_second_layer_inside_and_the_base_outside(
         assert np.abs(lens_ref - base)[inside].mean() > 20, "the two renderings must differ"
     _, frame = lens_shots["off"]
     assert_close(frame, base, np.ones(frame.shape[:2], bool), "lens off")
+
+
+def test_lens_in_a_screen_space_mode(
+        dataset: Dataset, lens_shots: dict[str, tuple[LensShot, npt.NDArray[np.uint8]]]) -> None:
+    """An unsharp mode in the lens: its filter sees only the tiles under the lens, so pixels farther
+    than the filter's reach (F5: 10 px) from the clip edge match the whole-view reference."""
+    _, frame = lens_shots["unsharp"]
+    (cx, cy), r = LENS_C, LENS_R
+    x, y = ORIGIN[1]
+    ch = level_channels(dataset.dir, dataset.blocks["base"], 1, (x, y) + VIEW)
+    ref = render(dataset.blocks["base"], ch, LIGHT, "unsharpLuminance", {"umGain": 3.0})
+    expected = np.round(ref * 255).astype(np.int16)
+    plain = np.round(reference(dataset, "base", 1) * 255).astype(np.int16)
+    core = disk(cx, cy, r - 16)
+    assert_close(frame, expected, core, "unsharp lens core")
+    assert_close(frame, plain, ~disk(cx, cy, r + 1.5), "outside an unsharp lens")
+    assert np.abs(expected - plain)[core].max() > 10, "the filter must change the picture"
+
+
+def test_lens_on_the_same_layer_reuses_its_tiles(
+        lens_shots: dict[str, tuple[LensShot, npt.NDArray[np.uint8]]]) -> None:
+    """The base layer's tiles of this view are loaded; the lens on the same layer (another mode)
+    shares their cache records (bundle hash key), so it requests no base tile again."""
+    shot, _ = lens_shots["normals"]
+    again = [u for u in shot.meta()["requests"] if "/iiif/base_" in u and "_ov" not in u]
+    assert again == []
 
 
 def test_lens_opacity_blends_over_the_base(
