@@ -43,6 +43,7 @@ PATCHES = {0: (RED, (160, 140, 120, 90)), 1: (GREEN, (220, 160, 240, 200))}
 TEXTS = {"0": {"short": "Glyph detail", "long": "<p>A <b>glyph</b>.<script>bad()</script></p>"},
          "1": {"short": "Whole panel", "long": "<p>The panel.</p>"}}
 ORIGIN = {1: (120, 100), 2: (60, 50), 4: (0, 0)}  # zoom factor → region origin in level px
+TILE_URL = re.compile(r"/iiif/(?P<image>[A-Za-z0-9_-]+)/(?P<region>full|\d+,\d+,\d+,\d+)/")
 
 
 def smooth(rng: np.random.Generator, lo: float, hi: float, shape: tuple[int, ...] = (),
@@ -223,6 +224,17 @@ def test_overlay_of_level_k_is_drawn_only_at_zoom_k(
         # (the whole frame matches the reference with only level k's image: no other level shows)
 
 
+def test_only_the_current_levels_overlay_loads(
+        zoom_shots: list[tuple[LensShot, npt.NDArray[np.uint8]]]) -> None:
+    """Overlay items of other levels have opacity 0: none of their tiles or info.json loads."""
+    info = re.compile(r"/iiif/(?P<image>[A-Za-z0-9_-]+)/info\.json")
+    for (shot, _), level in zip(zoom_shots[:3], (0, 1, 2), strict=True):
+        urls = shot.meta()["requests"]
+        fetched = {m["image"] for m in (TILE_URL.search(u) or info.search(u) for u in urls) if m}
+        overlays = {i for i in fetched if "_ov" in i}
+        assert overlays == ({f"base_ov{level}"} if level in PATCHES else set()), (level, overlays)
+
+
 def test_overlays_can_be_hidden(dataset: Dataset,
                                 zoom_shots: list[tuple[LensShot, npt.NDArray[np.uint8]]]) -> None:
     shot, frame = zoom_shots[3]
@@ -347,7 +359,6 @@ def test_annotations_only_inside_or_outside_the_lens(
                  f"annotations {display}: where they are hidden")
 
 
-TILE_URL = re.compile(r"/iiif/(?P<image>[A-Za-z0-9_-]+)/(?P<region>full|\d+,\d+,\d+,\d+)/")
 
 
 def test_lens_layer_loads_only_the_tiles_under_the_lens(dataset: Dataset) -> None:
