@@ -21,6 +21,7 @@
 // Gesture steps (x, y in CSS px of the viewer element; `steps` intermediate moves, default 8):
 //   {"type": "touch", "from": [[x, y], ...], "to": [[x, y], ...], "steps": 8}  (1 or 2 fingers, CDP)
 //   {"type": "mouse", "from": [x, y], "to": [x, y], "steps": 8, "button": "left"}  (press, drag, release)
+//   {"type": "pen", "from": [x, y], "to": [x, y], "steps": 8}  (a pen drag, CDP pointerType "pen")
 //   {"type": "wheel", "at": [x, y], "deltaY": -100}
 import { readFileSync, writeFileSync } from 'node:fs';
 import process from 'node:process';
@@ -62,8 +63,8 @@ function readSpec(path) {
       throw new RenderError(`${path}: shot ${i}: overlays must be a boolean, lens an object, gestures a list`);
     }
     for (const g of s.gestures ?? []) {
-      if (!['touch', 'mouse', 'wheel'].includes(g?.type)) {
-        throw new RenderError(`${path}: shot ${i}: gesture type must be touch, mouse or wheel, got ${JSON.stringify(g)}`);
+      if (!['touch', 'mouse', 'pen', 'wheel'].includes(g?.type)) {
+        throw new RenderError(`${path}: shot ${i}: gesture type must be touch, mouse, pen or wheel, got ${JSON.stringify(g)}`);
       }
     }
   }
@@ -90,6 +91,18 @@ async function runGesture(page, cdp, origin, g) {
       await page.evaluate(() => new Promise((r) => { requestAnimationFrame(() => r()); }));
     }
     await cdp.send('Input.dispatchTouchEvent', { type: 'touchEnd', touchPoints: [] });
+  } else if (g.type === 'pen') {
+    const from = at(g.from);
+    const to = at(g.to ?? g.from);
+    const pen = (type, p, buttons) => cdp.send('Input.dispatchMouseEvent', {
+      type, x: p.x, y: p.y, button: 'left', buttons, clickCount: 1, pointerType: 'pen',
+    });
+    await pen('mousePressed', from, 1);
+    for (let k = 1; k <= steps; k++) {
+      await pen('mouseMoved', { x: lerp(from.x, to.x, k / steps), y: lerp(from.y, to.y, k / steps) }, 1);
+      await page.evaluate(() => new Promise((r) => { requestAnimationFrame(() => r()); }));
+    }
+    await pen('mouseReleased', to, 0);
   } else if (g.type === 'mouse') {
     const from = at(g.from);
     const to = at(g.to ?? g.from);
@@ -125,10 +138,11 @@ async function main() {
   const pageErrors = [];
   let failure = null;
   try {
-    const touch = spec.shots.some((s) => (s.gestures ?? []).some((g) => g.type === 'touch'));
+    const uses = (type) => spec.shots.some((s) => (s.gestures ?? []).some((g) => g.type === type));
+    const touch = uses('touch');
     const context = await browser.newContext({ viewport, deviceScaleFactor: 1, ...(touch ? { hasTouch: true } : {}) });
     const page = await context.newPage();
-    const cdp = touch ? await context.newCDPSession(page) : null;
+    const cdp = touch || uses('pen') ? await context.newCDPSession(page) : null;
     let requests = [];
     page.on('request', (req) => { requests.push(req.url()); });
     page.on('pageerror', (err) => pageErrors.push(`page error: ${err.message}`));

@@ -414,6 +414,8 @@ def gesture_meta(dataset: Dataset) -> dict[str, tuple[dict[str, Any], dict[str, 
                                  "to": [[140, 440], [212, 460]]}],
         "mouse inside": [{"type": "mouse", "from": [c[0] + 5, c[1]], "to": [c[0] - 25, c[1] - 15]}],
         "mouse border": [{"type": "mouse", "from": [c[0] + 40, c[1]], "to": [c[0] + 70, c[1]]}],
+        "pen inside": [{"type": "pen", "from": [c[0], c[1] + 5], "to": [c[0] + 30, c[1] + 45]}],
+        "pen outside": [{"type": "pen", "from": [150, 450], "to": [450, 150]}],
         "wheel inside": [{"type": "wheel", "at": [c[0], c[1]], "deltaY": -100}],
         "wheel outside": [{"type": "wheel", "at": [450, 150], "deltaY": -100}],
     }
@@ -449,6 +451,8 @@ def moved(before: dict[str, Any], after: dict[str, Any]) -> dict[str, bool]:
     ("two fingers inside", {"lens": True, "radius": True, "light": False, "view": False}),
     ("mouse inside", {"lens": True, "radius": False, "light": False, "view": False}),
     ("mouse border", {"lens": False, "radius": True, "light": False, "view": False}),
+    ("pen inside", {"lens": True, "radius": False, "light": False, "view": False}),
+    ("pen outside", {"lens": False, "radius": False, "light": True, "view": False}),
     ("wheel inside", {"lens": False, "radius": True, "light": False, "view": False}),
     ("wheel outside", {"lens": False, "radius": False, "light": False, "view": True}),
 ])
