@@ -11,21 +11,20 @@ import * as twgl from 'twgl.js';
 import { LanternaError } from '../iiif/errors';
 import type { RelightLayer } from '../iiif/relight-service';
 import type { Compositor, DrawerLens } from '../compositor';
-import { OVERLAY_FRAGMENT_SHADER } from '../gl/glsl/composite.glsl';
 import type { Stage } from '../gl/glsl/modes.glsl';
-import { QUAD_VERTEX_SHADER } from '../gl/glsl/quad.vert';
 import type { AnnotationDisplay } from '../lens/lens-state';
 import { lensInDevicePixels } from '../math/lens';
 import { layerUniforms, type LayerUniforms } from '../layers/layer-uniforms';
-import { compileProgram, ProgramCache, programSpec, type ProgramSpec } from '../layers/programs';
+import { ProgramCache, programSpec, type ProgramSpec } from '../layers/programs';
 import { lightFromProjection, OVERHEAD_LIGHT, type Light } from '../math/light';
 import { modelMatrix, multiply, viewMatrix, type Mat3 } from '../math/matrix';
 import { modeFilter } from '../render/filter-plan';
 import { applicableModes, DEFAULT_RENDER_MODE, type RenderMode } from '../render/modes';
 import { DEFAULT_RENDER_PARAMS, type RenderParams } from '../render/params';
 import { BUNDLE_DATA_TYPE, type PlaneBundle } from '../tiles/bundle';
-import { U_FILTERED, U_LENS_CIRCLE, U_MASK, U_MATRIX, U_PLANES, U_TEX_SCALE } from '../gl/uniforms';
+import { U_FILTERED, U_MATRIX, U_PLANES, U_TEX_SCALE } from '../gl/uniforms';
 import { LensTarget, scissorBox, type DeviceCircle } from './lens-target';
+import { OverlayPass, type OverlayQuad } from './overlay-pass';
 import { createSamplers, uploadPlaneBundle } from './plane-texture';
 import { ScreenFilter } from './screen-filter';
 
@@ -73,11 +72,6 @@ const CONTEXT_ATTRIBUTES: WebGLContextAttributes = {
   preserveDrawingBuffer: false,
 };
 
-/** Overlay mask `(a, b)`: `m = a + b · inside`. */
-const MASKS: Readonly<Record<AnnotationDisplay, [number, number]>> = {
-  everywhere: [1, 0], inside: [0, 1], outside: [1, -1],
-};
-
 /**
  * OpenSeadragon drawer for Lanterna layers. Pass the class as the viewer's `drawer` option, then
  * register each relightable TiledImage with {@link RelightDrawer.setLayer} (base layers),
@@ -95,7 +89,7 @@ export class RelightDrawer extends OpenSeadragon.DrawerBase implements Composito
   declare private lens: DrawerLens | null;
   declare private overlayDisplay: AnnotationDisplay;
   declare private lensTarget: LensTarget | null;
-  declare private overlayProgram: twgl.ProgramInfo | null;
+  declare private overlayPass: OverlayPass | null;
   declare private light: Light;
   declare private smoothing: boolean;
   declare private generation: number;
@@ -111,7 +105,7 @@ export class RelightDrawer extends OpenSeadragon.DrawerBase implements Composito
     this.lens = null;
     this.overlayDisplay = 'everywhere';
     this.lensTarget = null;
-    this.overlayProgram = null;
+    this.overlayPass = null;
     this.light = OVERHEAD_LIGHT;
     this.smoothing = true;
     this.generation = 0;
@@ -134,7 +128,7 @@ export class RelightDrawer extends OpenSeadragon.DrawerBase implements Composito
       this.programs?.clear();
       this.screenFilter = null;
       this.lensTarget = null;
-      this.overlayProgram = null;
+      this.overlayPass = null;
       this.setupGl();
       this.setInternalCacheNeedsRefresh();
       this.viewer.forceRedraw();
@@ -315,9 +309,7 @@ export class RelightDrawer extends OpenSeadragon.DrawerBase implements Composito
     this.programs?.clear();
     this.screenFilter?.destroy();
     this.lensTarget?.destroy();
-    if (this.overlayProgram && !this.gl.isContextLost()) {
-      this.gl.deleteProgram(this.overlayProgram.program);
-    }
+    this.overlayPass?.destroy();
     super.destroy();
     this.canvas.removeEventListener('webglcontextlost', this.onLost);
     this.canvas.removeEventListener('webglcontextrestored', this.onRestored);
@@ -440,43 +432,28 @@ export class RelightDrawer extends OpenSeadragon.DrawerBase implements Composito
     gl.disable(gl.SCISSOR_TEST);
   }
 
-  /** Draw overlay tiles over the frame, premultiplied source-over, masked by the lens. */
+  /** Draw overlay tiles over the frame, masked by the lens. */
   private drawOverlays(entries: { item: TiledImageLike; tiles: TileLike[] }[], view: Mat3,
     circle: DeviceCircle | null): void {
-    const gl = this.gl;
     if (!this.samplers) {
       return;
     }
-    this.overlayProgram ??= compileProgram(gl, QUAD_VERTEX_SHADER, OVERLAY_FRAGMENT_SHADER, 'overlay');
-    const program = this.overlayProgram;
-    gl.bindFramebuffer(gl.FRAMEBUFFER, null);
-    gl.viewport(0, 0, gl.drawingBufferWidth, gl.drawingBufferHeight);
-    gl.useProgram(program.program);
-    gl.uniform1i(gl.getUniformLocation(program.program, U_PLANES), 0);
-    twgl.setUniforms(program, {
-      [U_LENS_CIRCLE]: circle ? [circle.x, circle.y, circle.radius] : [0, 0, 0],
-      [U_MASK]: MASKS[circle ? this.overlayDisplay : 'everywhere'],
-    });
-    gl.activeTexture(gl.TEXTURE0);
-    gl.bindSampler(0, this.smoothing ? this.samplers.linear : this.samplers.nearest);
-    gl.enable(gl.BLEND);
-    gl.blendFunc(gl.ONE, gl.ONE_MINUS_SRC_ALPHA);
+    const quads: OverlayQuad[] = [];
     for (const { item, tiles } of entries) {
       const itemMatrix = multiply(view, this.itemRotation(item));
       for (const tile of tiles) {
         const data = this.getDataToDraw(tile as unknown as OpenSeadragon.Tile) as TileTexture | undefined;
-        if (!data?.texture) {
-          continue;
+        if (data?.texture) {
+          quads.push({
+            texture: data.texture,
+            matrix: multiply(itemMatrix, modelMatrix(tile.positionedBounds, tile.flipped === true)),
+            texScale: data.texScale,
+          });
         }
-        gl.bindTexture(gl.TEXTURE_2D_ARRAY, data.texture);
-        twgl.setUniforms(program, {
-          [U_MATRIX]: new Float32Array(multiply(itemMatrix, modelMatrix(tile.positionedBounds, tile.flipped === true))),
-          [U_TEX_SCALE]: data.texScale,
-        });
-        gl.drawArrays(gl.TRIANGLE_STRIP, 0, 4);
       }
     }
-    gl.disable(gl.BLEND);
+    this.overlayPass ??= new OverlayPass(this.gl);
+    this.overlayPass.draw(quads, circle, this.overlayDisplay, this.smoothing ? this.samplers.linear : this.samplers.nearest);
   }
 
   /** Draw an item's tiles (coarse level first, finer over them: painter's algorithm, opaque). */
