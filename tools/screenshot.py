@@ -26,6 +26,8 @@ def main() -> int:
     parser.add_argument("--root", type=Path, default=REPO / "datasets")
     parser.add_argument("--out", type=Path, default=REPO / "docs" / "screenshot.png")
     parser.add_argument("--light", type=float, nargs=2, default=(-0.55, 0.45))
+    parser.add_argument("--lens-layer", default="band_ir",
+                        help="layer shown in the lens ('' for no lens; default the IR band)")
     args = parser.parse_args()
     if not (args.root / "demo" / "lanterna.json").is_file():
         build_demo(args.root / "demo", force=True)
@@ -42,7 +44,10 @@ def main() -> int:
                 "viewport": {"width": 1200, "height": 800},
                 "shots": [{"light": list(args.light),
                            "region": [0, 0, desc["width"], desc["height"]],
-                           "out": str(Path(tmp) / "shot.rgba")}],
+                           "out": str(Path(tmp) / "shot.rgba"), "overlays": True,
+                           **({"lens": {"enabled": True, "center": [470, 585], "radius": 150,
+                                        "layer": args.lens_layer, "annotations": "outside"}}
+                              if args.lens_layer else {})}],
                 "screenshot": str(args.out.resolve()),
             }
             (Path(tmp) / "spec.json").write_text(json.dumps(spec))
