@@ -18,25 +18,12 @@ by :mod:`lanterna.tiler.scene`.
 
 from __future__ import annotations
 
-import json
 from pathlib import Path
 from typing import Any
 
 from .errors import LanternaInputError
+from .fileio import read_json
 from .plans import LayerPlan, plan_bands, plan_source, plan_svbrdf
-
-
-def read_json(path: Path) -> dict[str, Any]:
-    """Read a JSON object with one-line errors."""
-    try:
-        doc = json.loads(Path(path).read_text())
-    except OSError as err:
-        raise LanternaInputError(path, f"cannot read ({err.strerror})") from None
-    except ValueError as err:
-        raise LanternaInputError(path, f"not valid JSON ({err})") from None
-    if not isinstance(doc, dict):
-        raise LanternaInputError(path, "expected a JSON object")
-    return doc
 
 
 def is_scene(doc: dict[str, Any]) -> bool:

@@ -2,10 +2,12 @@
 
 from __future__ import annotations
 
+import json
 import os
 import tempfile
 from collections.abc import Sequence
 from pathlib import Path
+from typing import Any
 
 from .errors import LanternaInputError
 
@@ -36,3 +38,16 @@ def write_atomic(dest: Path, chunks: Sequence[bytes]) -> None:
     except BaseException:
         Path(tmp).unlink(missing_ok=True)
         raise
+
+
+def read_json(path: Path) -> dict[str, Any]:
+    """Read a JSON object with one-line errors."""
+    try:
+        doc = json.loads(Path(path).read_text())
+    except OSError as err:
+        raise LanternaInputError(path, f"cannot read ({err.strerror})") from None
+    except ValueError as err:
+        raise LanternaInputError(path, f"not valid JSON ({err})") from None
+    if not isinstance(doc, dict):
+        raise LanternaInputError(path, "expected a JSON object")
+    return doc

@@ -28,6 +28,7 @@ import pyvips
 from . import overlay_geometry as og
 from .dataset import DatasetWriter, read_description, rewriting
 from .errors import LanternaInputError
+from .fileio import read_json
 from .pyramid import write_pyramid
 
 log = logging.getLogger("lanterna.overlays")
@@ -217,12 +218,7 @@ def read_texts(texts: Path | Mapping[Any, Any] | None) -> Texts:
     source: Path | None = None
     if isinstance(texts, (str, Path)):
         source = Path(texts)
-        try:
-            texts = json.loads(source.read_text())
-        except OSError as err:
-            raise LanternaInputError(source, f"cannot read ({err.strerror})") from None
-        except ValueError as err:
-            raise LanternaInputError(source, f"not valid JSON ({err})") from None
+        texts = read_json(source)
     if not isinstance(texts, Mapping):
         raise LanternaInputError(source, "texts must be an object {\"L\": {\"short\", \"long\"}}")
     out: Texts = {}
