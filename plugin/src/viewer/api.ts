@@ -1,0 +1,119 @@
+/**
+ * The public shape of a Lanterna viewer: the options of `createViewer`, the running viewer's API
+ * and its errors.
+ */
+import type OpenSeadragon from 'openseadragon';
+import type { PixelData } from '../drawer/relight-drawer';
+import { LanternaError } from '../iiif/errors';
+import type { LoadedLayer } from '../iiif/load';
+import type { ManifestInfo } from '../iiif/manifest';
+import type { LayerType } from '../iiif/relight-service';
+import type { LensState, LensUpdate } from '../lens/lens-state';
+import type { Light } from '../math/light';
+import type { OverlayState } from '../overlay/overlay-controller';
+import type { RenderMode } from '../render/modes';
+import type { RenderParams } from '../render/params';
+import type { DragMode } from '../ui/interaction';
+
+/** Options of {@link createViewer}. */
+export interface CreateViewerOptions {
+  /** Container element (or its id). The viewer fills it. */
+  element: HTMLElement | string;
+  /** URL of the IIIF Presentation 3 manifest. */
+  manifest: string;
+  /** Initial light (lu, lv). @default [0, 0] */
+  light?: readonly [number, number];
+  /** What a plain drag does. @default 'light' */
+  mode?: DragMode;
+  /** Id of the layer shown first. @default the manifest's first layer */
+  layer?: string;
+  /** Show the light widget (a draggable, keyboard-controlled disc). @default true */
+  lightIndicator?: boolean;
+  /** Show the hypertext widget of the annotation overlays. @default true */
+  hypertext?: boolean;
+  /** Show the annotation overlays. @default true */
+  overlays?: boolean;
+  /** Extra OpenSeadragon options (the drawer, navigator and tile sources are set by Lanterna). */
+  osd?: Partial<OpenSeadragon.Options>;
+  /** `fetch` options for the manifest and info.json requests. */
+  fetchInit?: RequestInit;
+}
+
+/** A layer as listed by {@link LanternaViewer.getLayers}. */
+export interface LayerInfo {
+  readonly id: string;
+  readonly label: string;
+  readonly layerType: LayerType;
+  /** The render modes that apply to it, in menu order. */
+  readonly modes: RenderMode[];
+}
+
+/** A render mode that is unknown or does not apply to the active layer. */
+export class RenderModeError extends LanternaError {}
+/** No layer has this id. */
+export class UnknownLayerError extends LanternaError {}
+
+/** A running Lanterna viewer. */
+export interface LanternaViewer {
+  /** Resolves once the manifest is loaded and the default layer is added; rejects with a {@link LanternaError}. */
+  readonly ready: Promise<void>;
+  /** The OpenSeadragon viewer. */
+  readonly viewer: OpenSeadragon.Viewer;
+  /** The parsed manifest (null until ready). */
+  readonly manifest: ManifestInfo | null;
+  /** The active layer with its plane information (null until ready). */
+  readonly layer: LoadedLayer | null;
+  /** Set the light projection (clamped to the unit disk) and redraw. */
+  setLight(lu: number, lv: number): void;
+  /** The current light. */
+  getLight(): Light;
+  /** Set what a plain drag does. */
+  setMode(mode: DragMode): void;
+  /** What a plain drag does. */
+  getMode(): DragMode;
+  /** The layers, in manifest order (empty until ready). */
+  getLayers(): LayerInfo[];
+  /** Show another layer (loads its plane information on first use); rejects with {@link UnknownLayerError}. */
+  setActiveLayer(id: string): Promise<void>;
+  /** The active layer's id ('' until ready). */
+  getActiveLayer(): string;
+  /** Set the render mode; throws {@link RenderModeError} if it does not apply to the active layer. */
+  setRenderMode(mode: RenderMode): void;
+  /** The render mode. */
+  getRenderMode(): RenderMode;
+  /** Change some render parameters (clamped to their ranges; unknown keys ignored). */
+  setRenderParams(params: Partial<RenderParams>): void;
+  /** The render parameters. */
+  getRenderParams(): RenderParams;
+  /** Set every render parameter back to its default. */
+  resetRenderParams(): void;
+  /**
+   * Show or hide the active layer's annotation overlays (and the hypertext widget).
+   */
+  setOverlaysVisible(visible: boolean): void;
+  /** Whether overlays are shown. */
+  getOverlaysVisible(): boolean;
+  /**
+   * The current level (docs/annotations.md) and the active layer's overlay there: `available` false
+   * when it has no overlay image at that level; `long` is sanitised HTML.
+   */
+  getOverlayState(): OverlayState;
+  /**
+   * Change the lens (any subset; `params` are merged into the lens's own parameters, `layer` ''
+   * follows the active layer). Throws {@link UnknownLayerError}, {@link RenderModeError} or
+   * `LensOptionError` for bad arguments; resolves once the lens layer is open.
+   */
+  setLens(update: LensUpdate): Promise<void>;
+  /** The lens (`layer` resolved to an id). */
+  getLens(): LensState;
+  /** Call `listener` after any change of light, layer, mode, parameters, lens, overlays or level; returns an unsubscribe function. */
+  onChange(listener: () => void): () => void;
+  /** Fit the rectangle (x, y, w, h) in image pixels into the viewer, immediately. */
+  showImageRegion(x: number, y: number, width: number, height: number): void;
+  /** Resolves when every tile needed for the current view is loaded and drawn. */
+  whenFullyLoaded(): Promise<void>;
+  /** Render a frame now and read it back: RGBA, rows top-down, device pixels. */
+  readPixels(): PixelData;
+  /** Remove the viewer and free its GL resources. */
+  destroy(): void;
+}

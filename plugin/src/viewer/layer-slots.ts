@@ -1,0 +1,134 @@
+/**
+ * The viewer's layers: one slot per manifest layer, whose plane information is loaded and whose
+ * TiledImage is added (at opacity 0, so it loads nothing) on first use.
+ */
+import OpenSeadragon from 'openseadragon';
+import { loadLayer, type InfoCache, type LoadedLayer } from '../iiif/load';
+import type { ManifestLayer } from '../iiif/manifest';
+import type { RelightLayer } from '../iiif/relight-service';
+import { currentLevel, imagePxPerDevicePx, maxLevelOf } from '../math/levels';
+import { applicableModes } from '../render/modes';
+import { addBundleItem } from '../tiles/add-item';
+import { UnknownLayerError, type LayerInfo } from './api';
+
+/** One manifest layer and what has been opened of it. */
+export interface LayerSlot {
+  readonly info: ManifestLayer;
+  loaded?: LoadedLayer;
+  item?: Promise<OpenSeadragon.TiledImage>;
+  tiledImage?: OpenSeadragon.TiledImage;
+}
+
+/** Options of {@link LayerSlots}. */
+export interface LayerSlotsOptions {
+  /** `fetch` options for the info.json requests. */
+  readonly fetchInit?: RequestInit;
+  /** info.json documents already requested. */
+  readonly infoCache: InfoCache;
+  /** Called once per new layer item (e.g. to tell the drawer how to draw it). */
+  register(item: OpenSeadragon.TiledImage, layer: RelightLayer): void;
+}
+
+function previewIndex(layer: LoadedLayer['layer']): number {
+  return layer.layerType === 'ptm' && layer.colorspace === 'lrgb' ? 2 : 0;
+}
+
+/** The layer slots of a viewer, in manifest order. */
+export class LayerSlots {
+  readonly #viewer: OpenSeadragon.Viewer;
+  readonly #options: LayerSlotsOptions;
+  readonly #slots = new Map<string, LayerSlot>();
+
+  constructor(viewer: OpenSeadragon.Viewer, options: LayerSlotsOptions) {
+    this.#viewer = viewer;
+    this.#options = options;
+  }
+
+  /** Add a slot per manifest layer. */
+  add(layers: readonly ManifestLayer[]): void {
+    for (const info of layers) {
+      this.#slots.set(info.id, { info });
+    }
+  }
+
+  /** The slot of a layer, if any. */
+  get(id: string): LayerSlot | undefined {
+    return this.#slots.get(id);
+  }
+
+  /**
+   * The slot of a layer.
+   *
+   * @throws {@link UnknownLayerError} when no layer has this id
+   */
+  require(id: string): LayerSlot {
+    const slot = this.#slots.get(id);
+    if (!slot) {
+      throw new UnknownLayerError(`no layer ${JSON.stringify(id)} (layers: ${this.names()})`);
+    }
+    return slot;
+  }
+
+  /** The layer ids, comma-separated (for error messages). */
+  names(): string {
+    return [...this.#slots.keys()].join(', ');
+  }
+
+  /** The layers, in manifest order. */
+  list(): LayerInfo[] {
+    return [...this.#slots.values()].map(({ info }) => ({
+      id: info.id, label: info.label, layerType: info.layer.layerType, modes: applicableModes(info.layer),
+    }));
+  }
+
+  /** Hide every layer item but `slot`'s. */
+  hideOthers(slot: LayerSlot): void {
+    for (const other of this.#slots.values()) {
+      if (other !== slot) {
+        other.tiledImage?.setOpacity(0);
+      }
+    }
+  }
+
+  /** A layer's plane information, loaded once. */
+  async loadedOf(slot: LayerSlot): Promise<LoadedLayer> {
+    slot.loaded ??= await loadLayer(slot.info, this.#options.fetchInit, this.#options.infoCache);
+    return slot.loaded;
+  }
+
+  /** Add a (invisible) TiledImage of a loaded layer's planes; `what` names it in errors. */
+  addItem(loaded: LoadedLayer, what: string): Promise<OpenSeadragon.TiledImage> {
+    return addBundleItem(this.#viewer, {
+      infos: loaded.infos,
+      geometry: loaded.geometry,
+      formats: loaded.layer.planes.map((p) => p.format),
+      previewIndex: previewIndex(loaded.layer),
+      opacity: 0,
+      what,
+    });
+  }
+
+  /** Load a layer's plane information and add its (invisible) TiledImage, once. */
+  itemOf(slot: LayerSlot): Promise<OpenSeadragon.TiledImage> {
+    slot.item ??= (async () => {
+      const loaded = await this.loadedOf(slot);
+      const item = await this.addItem(loaded, `layer ${loaded.id}`);
+      this.#options.register(item, loaded.layer);
+      slot.tiledImage = item;
+      return item;
+    })();
+    slot.item.catch(() => { slot.item = undefined; });
+    return slot.item;
+  }
+}
+
+/** The current level (`docs/annotations.md`), from the zoom of `slot`'s item (0 when it is not open). */
+export function levelOf(viewer: OpenSeadragon.Viewer, slot: LayerSlot | null): number {
+  const item = slot?.tiledImage;
+  const loaded = slot?.loaded;
+  if (!item || !loaded) {
+    return 0;
+  }
+  const zoom = item.viewportToImageZoom(viewer.viewport.getZoom(true));
+  return currentLevel(imagePxPerDevicePx(zoom, OpenSeadragon.pixelDensityRatio), maxLevelOf(loaded.geometry.scaleFactors));
+}
