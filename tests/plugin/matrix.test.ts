@@ -1,5 +1,5 @@
 import { describe, expect, it } from 'vitest';
-import { modelMatrix, multiply, transformPoint, viewMatrix } from '../../plugin/src/math/matrix';
+import { modelMatrix, multiply, rotationAbout, transformPoint, viewMatrix } from '../../plugin/src/math/matrix';
 
 describe('tile matrices', () => {
   const bounds = { x: 0.25, y: 0.1, width: 0.5, height: 0.375 };
@@ -40,5 +40,23 @@ describe('tile matrices', () => {
     const [x, y] = transformPoint(r, 1, 0);
     expect(Math.abs(x) + Math.abs(y)).toBeCloseTo(1, 12);
     expect(x).toBeCloseTo(0, 12);
+  });
+});
+
+describe('rotationAbout', () => {
+  it('keeps the centre fixed and turns a point about it by the item rotation', () => {
+    const m = rotationAbout(90, { x: 1, y: 1 });
+    const [cx, cy] = transformPoint(m, 1, 1);
+    expect(cx).toBeCloseTo(1, 12);
+    expect(cy).toBeCloseTo(1, 12);
+    const [x, y] = transformPoint(m, 2, 1);
+    expect(x).toBeCloseTo(1, 12);
+    expect(y).toBeCloseTo(0, 12);
+  });
+
+  it('is the identity for a full turn', () => {
+    rotationAbout(360, { x: 0.3, y: 0.7 }).forEach((v, i) => {
+      expect(v).toBeCloseTo([1, 0, 0, 0, 1, 0, 0, 0, 1][i] ?? NaN, 12);
+    });
   });
 });

@@ -1,6 +1,6 @@
 /**
- * The lens's render target: the lens layer is drawn into a canvas-sized RGBA8 texture (limited by
- * a scissor box to the lens), then composited over the base layer inside the circle.
+ * The lens pass and its render target: the lens layer is drawn into a canvas-sized RGBA8 texture
+ * (limited by a scissor box to the lens), then composited over the base layer inside the circle.
  */
 import * as twgl from 'twgl.js';
 import { FULLSCREEN_VERTEX_SHADER } from '../gl/glsl/box.glsl';
@@ -40,6 +40,19 @@ export class LensTarget {
   /** The framebuffer to draw the lens layer into (valid after {@link LensTarget.begin}). */
   get framebuffer(): WebGLFramebuffer | null {
     return this.fb;
+  }
+
+  /**
+   * The lens pass: clear the target around `circle`, let `draw` draw the lens layer into it
+   * (framebuffer and scissor box given), then composite it inside the circle with `opacity`.
+   */
+  drawLens(circle: DeviceCircle, opacity: number,
+    draw: (target: WebGLFramebuffer | null, box: readonly [number, number, number, number]) => void): void {
+    const gl = this.gl;
+    const box = scissorBox(circle, gl.drawingBufferWidth, gl.drawingBufferHeight);
+    this.begin(gl.drawingBufferWidth, gl.drawingBufferHeight, box);
+    draw(this.fb, box);
+    this.composite(circle, opacity, box);
   }
 
   /** Bind the target (resized to the canvas) and clear the scissor box to transparent. */

@@ -64,3 +64,13 @@ export function modelMatrix(rect: RectLike, flipped = false): Mat3 {
 export function transformPoint(m: Mat3, x: number, y: number): [number, number] {
   return [m[0] * x + m[3] * y + m[6], m[1] * x + m[4] * y + m[7]];
 }
+
+/** Rotation by `degrees` (an OpenSeadragon item rotation) about the point `center`. */
+export function rotationAbout(degrees: number, center: { readonly x: number; readonly y: number }): Mat3 {
+  const a = (-degrees * Math.PI) / 180;
+  const cos = Math.cos(a);
+  const sin = Math.sin(a);
+  const rot: Mat3 = [cos, sin, 0, -sin, cos, 0, 0, 0, 1];
+  const toCenter: Mat3 = [1, 0, 0, 0, 1, 0, center.x, center.y, 1];
+  return multiply(multiply(toCenter, rot), [1, 0, 0, 0, 1, 0, -center.x, -center.y, 1]);
+}
