@@ -4,6 +4,7 @@
 import { ManifestError, MissingRelightServiceError } from './errors';
 import { parseOverlays, type OverlayLevel } from './overlays';
 import { parseRelightService, RELIGHT_SERVICE_TYPE, type RelightLayer } from './relight-service';
+import { type Json, isRecord, asArray } from './json';
 
 /** One layer of a manifest: a painting `Image` (a `Choice` item) with its relight service. */
 export interface ManifestLayer {
@@ -29,19 +30,6 @@ export interface ManifestInfo {
   readonly imageId: string;
   /** The default layer (= `layers[0].layer`). */
   readonly layer: RelightLayer;
-}
-
-type Json = Record<string, unknown>;
-
-function isRecord(x: unknown): x is Json {
-  return typeof x === 'object' && x !== null && !Array.isArray(x);
-}
-
-function asArray(x: unknown): unknown[] {
-  if (Array.isArray(x)) {
-    return x;
-  }
-  return x === undefined || x === null ? [] : [x];
 }
 
 /**

@@ -4,6 +4,7 @@
  * `LanternaOverlayLevel` service. Pure: no DOM, no network.
  */
 import { OverlayError } from './errors';
+import { type Json, isRecord, asArray } from './json';
 
 /** `type` of the machine-readable overlay level block. */
 export const OVERLAY_SERVICE_TYPE = 'LanternaOverlayLevel';
@@ -25,19 +26,6 @@ export interface OverlayLevel {
   /** The level image's size: `ceil(W/2^L) × ceil(H/2^L)`. */
   readonly width: number;
   readonly height: number;
-}
-
-type Json = Record<string, unknown>;
-
-function isRecord(x: unknown): x is Json {
-  return typeof x === 'object' && x !== null && !Array.isArray(x);
-}
-
-function asArray(x: unknown): unknown[] {
-  if (Array.isArray(x)) {
-    return x;
-  }
-  return x === undefined || x === null ? [] : [x];
 }
 
 function text(x: unknown): string {

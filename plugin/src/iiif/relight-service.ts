@@ -4,6 +4,7 @@
  */
 import { BASES } from '../math/ptm-basis';
 import { RelightServiceError } from './errors';
+import { isRecord } from './json';
 
 /** Service `type` of the relight service block. */
 export const RELIGHT_SERVICE_TYPE = 'LanternaRelight';
@@ -101,10 +102,6 @@ export function svbrdfMapIndices(layer: Pick<RelightLayer, 'planes'>): Record<Sv
       && p.channels.every((c, i) => c === want[i]));
   }
   return out;
-}
-
-function isRecord(x: unknown): x is Record<string, unknown> {
-  return typeof x === 'object' && x !== null && !Array.isArray(x);
 }
 
 function numbers(x: unknown, n: number, what: string): number[] {
