@@ -61,3 +61,11 @@ def live_server() -> Iterator[Callable[[Path], LiveServer]]:
     yield start
     for s in servers:
         s.close()
+
+
+@pytest.fixture(scope="module")
+def lens_dataset(tmp_path_factory: pytest.TempPathFactory) -> object:
+    """The overlay/lens/gesture tests' dataset (tests/python/lens_fixtures.py), once per module."""
+    from .lens_fixtures import make_lens_dataset
+
+    return make_lens_dataset(tmp_path_factory)
