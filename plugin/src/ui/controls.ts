@@ -6,19 +6,12 @@ import { LanternaError } from '../iiif/errors';
 import { MODE_LABELS, shadingClass, type RenderMode } from '../render/modes';
 import { PARAM_SPECS, relevantParams, type RenderParamName } from '../render/params';
 import type { LanternaViewer } from '../viewer';
+import { labelled } from './dom';
 
 /** The panel's DOM. */
 export interface Controls {
   readonly element: HTMLElement;
   destroy(): void;
-}
-
-function labelled(text: string, control: HTMLElement): HTMLLabelElement {
-  const label = document.createElement('label');
-  const span = document.createElement('span');
-  span.textContent = text;
-  label.append(span, control);
-  return label;
 }
 
 /**

@@ -5,6 +5,7 @@
 import { ANNOTATION_DISPLAYS, type AnnotationDisplay } from '../lens/lens-state';
 import { MODE_LABELS, type RenderMode } from '../render/modes';
 import type { LanternaViewer } from '../viewer';
+import { labelled } from './dom';
 
 /** The section's DOM. */
 export interface LensControls {
@@ -15,14 +16,6 @@ export interface LensControls {
 const DISPLAY_LABELS: Readonly<Record<AnnotationDisplay, string>> = {
   everywhere: 'Everywhere', inside: 'Inside the lens', outside: 'Outside the lens',
 };
-
-function row(text: string, control: HTMLElement): HTMLLabelElement {
-  const label = document.createElement('label');
-  const span = document.createElement('span');
-  span.textContent = text;
-  label.append(span, control);
-  return label;
-}
 
 /** Build the lens section into `parent` for a ready viewer. */
 export function createLensControls(lanterna: LanternaViewer, parent: HTMLElement,
@@ -48,10 +41,10 @@ export function createLensControls(lanterna: LanternaViewer, parent: HTMLElement
   for (const l of layers) {
     layerSelect.add(new Option(`${l.label} (${l.layerType})`, l.id));
   }
-  const opacityRow = row('Opacity', opacity);
+  const opacityRow = labelled('Opacity', opacity);
   opacityRow.append(opacityValue);
-  const annotationsRow = row('Annotations', display);
-  section.append(legend, row('Layer', layerSelect), row('Mode', modeSelect), opacityRow, annotationsRow);
+  const annotationsRow = labelled('Annotations', display);
+  section.append(legend, labelled('Layer', layerSelect), labelled('Mode', modeSelect), opacityRow, annotationsRow);
   parent.appendChild(section);
 
   let shownLayer = '';
