@@ -55,7 +55,7 @@ class DatasetWriter:
     def __init__(self, out: Path, *, name: str, label: str, width: int, height: int,
                  base_url: str = DEFAULT_BASE_URL, tile_size: int = 256,
                  source: str | None = None, force: bool = False,
-                 summary: str | None = None) -> None:
+                 summary: str | None = None, quality: dict[str, Any] | None = None) -> None:
         self.out = Path(out)
         self.name = check_identifier(name, "dataset name")
         self.label = label
@@ -64,6 +64,7 @@ class DatasetWriter:
         self.tile_size = tile_size
         self.source = source
         self.summary = summary
+        self.quality = quality
         self.force = force
         self.images: dict[str, dict[str, Any]] = {}
         self.layers: list[dict[str, Any]] = []
@@ -156,6 +157,7 @@ class DatasetWriter:
             "baseUrl": self.base_url,
             "source": self.source,
             **({"summary": self.summary} if self.summary else {}),
+            **({"quality": self.quality} if self.quality else {}),
             "images": self.images,
             "layers": [
                 {"id": layer["id"], "label": layer["label"], "body": layer["body"],

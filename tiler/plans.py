@@ -11,6 +11,7 @@ import re
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 from pathlib import Path
+from typing import Any
 
 import numpy as np
 import numpy.typing as npt
@@ -174,7 +175,7 @@ def _array_plan(lid: str, label: str, array: npt.NDArray[np.uint8], source: str)
 
 def build_dataset(plans: Sequence[LayerPlan], out: Path, *, name: str, label: str,
                   base_url: str = DEFAULT_BASE_URL, tile_size: int = 256, force: bool = False,
-                  summary: str | None = None) -> Path:
+                  summary: str | None = None, quality: dict[str, Any] | None = None) -> Path:
     """Write the planned layers (same size, unique ids) as one dataset at ``out``."""
     if not plans:
         raise LanternaInputError(None, "nothing to import: give at least one source")
@@ -189,7 +190,8 @@ def build_dataset(plans: Sequence[LayerPlan], out: Path, *, name: str, label: st
         seen.add(plan.id)
     with DatasetWriter(out, name=name, label=label, width=w, height=h, base_url=base_url,
                        tile_size=tile_size, source=", ".join(p.source for p in plans),
-                       force=force, summary=summary) as ds:
+                       force=force, summary=summary,
+                       quality=quality) as ds:
         for plan in plans:
             plan.add(ds)
     return Path(out)
