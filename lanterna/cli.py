@@ -109,7 +109,7 @@ def _fit_parser(sub: argparse._SubParsersAction[argparse.ArgumentParser]) -> Non
     fit.add_argument("--lp", type=Path, required=True, metavar="LIGHTS.lp",
                      help="light file: a count line, then 'filename x y z' rows")
     fit.add_argument("--model", action="append", required=True,
-                     choices=["ptm", "ptm-lrgb", "hsh", "normals"],
+                     choices=["ptm", "ptm-lrgb", "hsh", "normals", "ward"],
                      help="model to fit; repeat for several (one load of the images)")
     fit.add_argument("--terms", type=int, default=9, choices=[4, 9, 16],
                      help="HSH terms (default 9)")

@@ -1,4 +1,4 @@
-"""Fit relightable layers (PTM, HSH, photometric-stereo normals) to a multi-light collection.
+"""Fit relightable layers (PTM, HSH, normals, Lambert + Ward) to a multi-light collection.
 
 One load of the images serves every requested model.  Each model is a row of :data:`MODELS`:
 how to fit it and how to predict an image under a new light, so the leave-one-out quality
@@ -7,6 +7,7 @@ report (:func:`leave_one_out`) treats them alike.  See ``docs/fitting.md``.
 
 from __future__ import annotations
 
+import hashlib
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 from pathlib import Path
@@ -26,6 +27,7 @@ from .plans import LayerPlan, build_dataset
 from .ptm_fit import LUMINANCE_WEIGHTS, fit_ptm_lrgb, ptm_design_matrix, quantize_coefficients
 from .ptm_model import Ptm
 from .stack import load_stack
+from .ward_fit import Ward, fit_ward, predict_ward, quantize_ward
 
 Stack = npt.NDArray[np.float32]
 Lights = npt.NDArray[np.float64]
@@ -162,17 +164,64 @@ def _hsh_plan(hsh: Hsh, lid: str, label: str, source: str) -> LayerPlan:
                      lambda ds: add_hsh_layer(ds, hsh, layer_id=lid, label=label))
 
 
+def _normals_key(encoded: npt.NDArray[np.uint8]) -> dict[str, str]:
+    # identical encoded normal maps (normals + ward layers of one run) are stored once
+    return {"normals": "fitted-normals-" + hashlib.sha1(encoded.tobytes()).hexdigest()}
+
+
 def _normals_plan(model: Normals, lid: str, label: str, source: str) -> LayerPlan:
     encoded = encode_normals(model.normals)
     h, w = encoded.shape[:2]
+    share = _normals_key(encoded)
     return LayerPlan(lid, label, w, h, source,
-                     lambda ds: add_svbrdf_layer(ds, normals=encoded, layer_id=lid, label=label))
+                     lambda ds: add_svbrdf_layer(ds, normals=encoded, share=share,
+                                                 layer_id=lid, label=label))
+
+
+def _ward_plan(model: Ward, lid: str, label: str, source: str) -> LayerPlan:
+    encoded = encode_normals(model.normals)
+    h, w = encoded.shape[:2]
+    share = _normals_key(encoded)
+    return LayerPlan(lid, label, w, h, source,
+                     lambda ds: add_svbrdf_layer(ds, normals=encoded, kd=model.kd, ks=model.ks,
+                                                 gloss=model.gloss,
+                                                 gloss_limits=model.gloss_limits,
+                                                 input_colorspace="linear", share=share,
+                                                 layer_id=lid, label=label))
+
+
+class _NormalsOnce:
+    """:func:`fit_normals`, remembering the last few results by (stack, lights) object identity.
+
+    So the ``normals`` and ``ward`` models of one table fit the normals once and write one
+    normal map.  Holds its inputs, so an identity match cannot be a recycled ``id``.
+    """
+
+    def __init__(self, keep: int = 3) -> None:
+        self._keep = keep
+        self._recent: list[tuple[Stack, Lights, Normals]] = []
+
+    def __call__(self, images: Stack, lights: Lights) -> Normals:
+        for seen_images, seen_lights, fitted in self._recent:
+            if seen_images is images and seen_lights is lights:
+                return fitted
+        fitted = fit_normals(images, lights)
+        self._recent = [(images, lights, fitted), *self._recent][: self._keep]
+        return fitted
+
+
+def _fit_ward_model(normals: Callable[[Stack, Lights], Normals], images: Stack,
+                    lights: Lights) -> Ward:
+    nrm = normals(images, lights).normals
+    kd, ks, alpha = fit_ward(images, lights, nrm)
+    return quantize_ward(nrm, kd, ks, alpha)
 
 
 def model_table(terms: int = 9) -> dict[str, Model]:
     """Return the fittable models by CLI name (``hsh`` with ``terms`` terms)."""
     if terms not in HSH_TERMS:
         raise LanternaInputError(None, f"--terms must be 4, 9 or 16, got {terms}")
+    normals = _NormalsOnce()
     return {
         "ptm": Model("ptm", "PTM RGB (fitted)", lambda s, lt: fit_ptm_rgb(s, lt),
                      predict_ptm, _ptm_plan),
@@ -180,8 +229,10 @@ def model_table(terms: int = 9) -> dict[str, Model]:
                           predict_ptm, _ptm_plan),
         "hsh": Model(f"hsh{terms}", f"HSH {terms} terms (fitted)",
                      lambda s, lt: fit_hsh(s, lt, terms), predict_hsh, _hsh_plan),
-        "normals": Model("normals", "Normals (robust photometric stereo)", fit_normals,
+        "normals": Model("normals", "Normals (robust photometric stereo)", normals,
                          predict_normals, _normals_plan),
+        "ward": Model("ward", "Lambert + Ward (fitted)",
+                      lambda s, lt: _fit_ward_model(normals, s, lt), predict_ward, _ward_plan),
     }
 
 
