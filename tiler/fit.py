@@ -26,10 +26,12 @@ from .lp import read_lp
 from .plans import LayerPlan, build_dataset
 from .ptm_fit import LUMINANCE_WEIGHTS, fit_ptm_lrgb, ptm_design_matrix, quantize_coefficients
 from .ptm_model import Ptm
-from .stack import load_stack
+from .stack import StackReader
 from .ward_fit import Ward, fit_ward, predict_ward, quantize_ward
 
 Stack = npt.NDArray[np.float32]
+#: An in-memory stack or one read from disk in row bands.
+Images = Stack | StackReader
 Lights = npt.NDArray[np.float64]
 
 #: Per-pixel rank window kept by the robust photometric stereo (fractions of the light count).
@@ -48,7 +50,7 @@ class Normals:
     albedo: npt.NDArray[np.float32]
 
 
-def fit_normals(images: Stack, lights: Lights, *, rank_window: tuple[float, float] = RANK_WINDOW,
+def fit_normals(images: Images, lights: Lights, *, rank_window: tuple[float, float] = RANK_WINDOW,
                 shadow: float = SHADOW_FRACTION, band_rows: int = 64) -> Normals:
     """Estimate normals by robust photometric stereo (Woodham with per-pixel sample selection).
 
@@ -103,7 +105,7 @@ def fit_normals(images: Stack, lights: Lights, *, rank_window: tuple[float, floa
     return Normals(normals, albedo)
 
 
-def fit_ptm_rgb(images: Stack, lights: Lights, *, band_rows: int = 64) -> Ptm:
+def fit_ptm_rgb(images: Images, lights: Lights, *, band_rows: int = 64) -> Ptm:
     """Fit an RGB PTM (six coefficients per channel) by least squares, pseudo-inverse once.
 
     Coefficients are in 0–255 units and quantised by
@@ -149,7 +151,7 @@ class Model:
 
     id: str
     label: str
-    fit: Callable[[Stack, Lights], Any]
+    fit: Callable[[Images, Lights], Any]
     predict: Callable[[Any, npt.NDArray[np.float64]], Stack]
     plan: Callable[[Any, str, str, str], LayerPlan]
 
@@ -197,42 +199,51 @@ class _NormalsOnce:
     normal map.  Holds its inputs, so an identity match cannot be a recycled ``id``.
     """
 
-    def __init__(self, keep: int = 3) -> None:
+    def __init__(self, keep: int = 3, **fit_options: Any) -> None:
         self._keep = keep
-        self._recent: list[tuple[Stack, Lights, Normals]] = []
+        self._options = fit_options
+        self._recent: list[tuple[Images, Lights, Normals]] = []
 
-    def __call__(self, images: Stack, lights: Lights) -> Normals:
+    def __call__(self, images: Images, lights: Lights) -> Normals:
         for seen_images, seen_lights, fitted in self._recent:
             if seen_images is images and seen_lights is lights:
                 return fitted
-        fitted = fit_normals(images, lights)
+        fitted = fit_normals(images, lights, **self._options)
         self._recent = [(images, lights, fitted), *self._recent][: self._keep]
         return fitted
 
 
-def _fit_ward_model(normals: Callable[[Stack, Lights], Normals], images: Stack,
-                    lights: Lights) -> Ward:
+def _fit_ward_model(normals: Callable[[Images, Lights], Normals], images: Images,
+                    lights: Lights, **fit_options: Any) -> Ward:
     nrm = normals(images, lights).normals
-    kd, ks, alpha = fit_ward(images, lights, nrm)
+    kd, ks, alpha = fit_ward(images, lights, nrm, **fit_options)
     return quantize_ward(nrm, kd, ks, alpha)
 
 
-def model_table(terms: int = 9) -> dict[str, Model]:
-    """Return the fittable models by CLI name (``hsh`` with ``terms`` terms)."""
+def model_table(terms: int = 9, band_rows: int | None = None) -> dict[str, Model]:
+    """Return the fittable models by CLI name (``hsh`` with ``terms`` terms).
+
+    ``band_rows`` (default: each fitter's own) is the number of image rows every fitter
+    reads and solves at once, so with a :class:`StackReader` the rows held in memory.
+    """
     if terms not in HSH_TERMS:
         raise LanternaInputError(None, f"--terms must be 4, 9 or 16, got {terms}")
-    normals = _NormalsOnce()
+    if band_rows is not None and band_rows < 1:
+        raise LanternaInputError(None, f"band rows must be at least 1, got {band_rows}")
+    kw: dict[str, Any] = {} if band_rows is None else {"band_rows": band_rows}
+    normals = _NormalsOnce(**kw)
     return {
-        "ptm": Model("ptm", "PTM RGB (fitted)", lambda s, lt: fit_ptm_rgb(s, lt),
+        "ptm": Model("ptm", "PTM RGB (fitted)", lambda s, lt: fit_ptm_rgb(s, lt, **kw),
                      predict_ptm, _ptm_plan),
-        "ptm-lrgb": Model("ptm_lrgb", "PTM LRGB (fitted)", lambda s, lt: fit_ptm_lrgb(s, lt),
-                          predict_ptm, _ptm_plan),
+        "ptm-lrgb": Model("ptm_lrgb", "PTM LRGB (fitted)",
+                          lambda s, lt: fit_ptm_lrgb(s, lt, **kw), predict_ptm, _ptm_plan),
         "hsh": Model(f"hsh{terms}", f"HSH {terms} terms (fitted)",
-                     lambda s, lt: fit_hsh(s, lt, terms), predict_hsh, _hsh_plan),
+                     lambda s, lt: fit_hsh(s, lt, terms, **kw), predict_hsh, _hsh_plan),
         "normals": Model("normals", "Normals (robust photometric stereo)", normals,
                          predict_normals, _normals_plan),
         "ward": Model("ward", "Lambert + Ward (fitted)",
-                      lambda s, lt: _fit_ward_model(normals, s, lt), predict_ward, _ward_plan),
+                      lambda s, lt: _fit_ward_model(normals, s, lt, **kw), predict_ward,
+                      _ward_plan),
     }
 
 
@@ -242,9 +253,13 @@ def psnr(predicted: Stack, actual: Stack) -> float:
     return float("inf") if mse == 0.0 else 10.0 * float(np.log10(1.0 / mse))
 
 
-def leave_one_out(images: Stack, lights: Lights, model: Model,
+def leave_one_out(images: Images, lights: Lights, model: Model,
                   every: int = HOLDOUT_EVERY) -> dict[str, Any]:
     """Fit ``model`` without every ``every``-th light and return the PSNR on the held-out ones.
+
+    This is a second full fit (on a :class:`StackReader`, a second streamed pass over the
+    training images) plus one whole held-out image and its prediction in memory at a time
+    (``H·W·3`` float32 each): on huge images budget for those, or skip the report.
 
     Returns ``{"heldOut": [indices], "psnr": [dB per held-out light], "meanPsnr", "medianPsnr"}``.
     """
@@ -260,21 +275,26 @@ def leave_one_out(images: Stack, lights: Lights, model: Model,
 def fit_collection(images_dir: Path, lp: Path, models: Sequence[str], out: Path, *,
                    terms: int = 9, name: str | None = None, label: str | None = None,
                    base_url: str = DEFAULT_BASE_URL, tile_size: int = 256, force: bool = False,
+                   band_rows: int | None = None,
                    report: Callable[[str], None] = lambda _: None) -> dict[str, Any]:
     """Fit ``models`` to the collection and write them as the layers of dataset ``out``.
 
+    The images are streamed: a :class:`StackReader` checks their headers, then every fit
+    reads them in bands of ``band_rows`` rows (default: each fitter's own, 32–64), so the
+    input held in memory is ``O(N · band_rows · W)`` whatever the image height; the fitted
+    float coefficients of the whole image are kept until the global quantisation.
     Everything is read and fitted before the dataset is written (atomically, by
     :func:`build_dataset`), so bad input leaves nothing behind.  Returns the quality report
     (also stored as ``quality`` in ``lanterna.json``).
     """
-    table = model_table(terms)
+    table = model_table(terms, band_rows)
     unknown = [m for m in models if m not in table]
     if unknown or not models:
         raise LanternaInputError(None, f"unknown model(s) {', '.join(unknown) or '(none)'}; "
                                  f"expected {', '.join(table)}")
     files, lights = read_lp(lp, images_dir)
-    report(f"loading {len(files)} images from {images_dir}")
-    stack = load_stack(files)
+    report(f"streaming {len(files)} images from {images_dir}")
+    stack = StackReader(files)
     source = f"{Path(images_dir).name} + {Path(lp).name}"
     held_every = HOLDOUT_EVERY if len(files) >= 2 * HOLDOUT_EVERY else 0
     quality: dict[str, Any] = {"protocol": f"fit without every {HOLDOUT_EVERY}th light "

@@ -7,6 +7,7 @@ import numpy.typing as npt
 
 from .hsh_basis import hsh_weights
 from .hsh_model import HSH_TERMS, Hsh
+from .stack import StackReader
 
 
 def hsh_design_matrix(lights: npt.ArrayLike, terms: int) -> npt.NDArray[np.float32]:
@@ -18,14 +19,16 @@ def hsh_design_matrix(lights: npt.ArrayLike, terms: int) -> npt.NDArray[np.float
     return np.stack([hsh_weights(float(x), float(y), terms) for x, y, _ in lv])
 
 
-def fit_hsh(images: npt.NDArray[np.uint8] | npt.NDArray[np.floating], lights: npt.ArrayLike,
+def fit_hsh(images: npt.NDArray[np.uint8] | npt.NDArray[np.floating] | StackReader,
+            lights: npt.ArrayLike,
             terms: int = 9, *, band_rows: int = 64) -> Hsh:
     """Fit ``terms`` HSH coefficients per pixel and channel, quantised to bytes per term.
 
     Parameters
     ----------
     images:
-        ``(N, H, W, 3)`` uint8 or float in 0–1.
+        ``(N, H, W, 3)`` uint8 or float in 0–1, or a
+        :class:`~lanterna.tiler.stack.StackReader` read band by band.
     lights:
         ``(N, 3)`` light directions (normalised here).
     terms:
@@ -39,7 +42,7 @@ def fit_hsh(images: npt.NDArray[np.uint8] | npt.NDArray[np.floating], lights: np
     """
     if terms not in HSH_TERMS:
         raise ValueError(f"terms must be 4, 9 or 16, got {terms}")
-    stack = np.asarray(images)
+    stack = images if isinstance(images, StackReader) else np.asarray(images)
     if stack.ndim != 4 or stack.shape[3] != 3:
         raise ValueError(f"images must be (N, H, W, 3), got {stack.shape}")
     basis = hsh_design_matrix(lights, terms)

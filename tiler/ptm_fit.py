@@ -14,6 +14,7 @@ import numpy as np
 import numpy.typing as npt
 
 from .ptm_model import Ptm
+from .stack import StackReader
 
 #: Rec. 709 luminance weights used by ptmfit (``computepoly.c``).
 LUMINANCE_WEIGHTS = (0.2125, 0.7154, 0.0721)
@@ -102,7 +103,7 @@ def quantize_coefficients(
 
 
 def fit_ptm_lrgb(
-    images: npt.NDArray[np.generic],
+    images: npt.NDArray[np.generic] | StackReader,
     lights: npt.ArrayLike,
     *,
     band_rows: int = DEFAULT_BAND_ROWS,
@@ -113,7 +114,8 @@ def fit_ptm_lrgb(
     ----------
     images : ndarray, shape (N, H, W, 3)
         One RGB image per light, rows top-down; ``uint8`` (0–255) or floating point
-        (0–1).  Values are used as they are (no gamma conversion).
+        (0–1), or a :class:`~lanterna.tiler.stack.StackReader` read band by band.
+        Values are used as they are (no gamma conversion).
     lights : array_like, shape (N, 3)
         Light directions, x right, y up, z toward the camera; normalised here.
         N must be at least 6 and the lights must determine all six PTM terms.
@@ -136,7 +138,7 @@ def fit_ptm_lrgb(
         On a bad shape or dtype, fewer than 6 lights, a light count that does not match
         the images, or a degenerate light set (rank of the design matrix below 6).
     """
-    if not isinstance(images, np.ndarray):
+    if not isinstance(images, (np.ndarray, StackReader)):
         raise ValueError("images must be a numpy array of shape (N, H, W, 3)")
     if images.ndim != 4 or images.shape[3] != 3:
         raise ValueError(f"images must have shape (N, H, W, 3), got {images.shape}")

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 from collections.abc import Sequence
 from pathlib import Path
+from typing import Any
 
 import numpy as np
 import numpy.typing as npt
@@ -66,3 +67,112 @@ def load_stack(files: Sequence[Path]) -> npt.NDArray[np.float32]:
                                      "collection must have the same size")
         stack[i] = img
     return stack
+
+
+#: numpy dtype of each libvips sample format a stack may hold.
+_NUMPY_FORMAT = {"uchar": np.uint8, "ushort": np.uint16, "float": np.float32,
+                 "double": np.float64}
+
+
+def _open_rgb(path: Path) -> pyvips.Image:
+    """Open ``path`` for one top-to-bottom pass, as 3 bands (alpha dropped, grey repeated)."""
+    try:
+        img = pyvips.Image.new_from_file(str(path), access="sequential")
+        if img.hasalpha():
+            img = img.extract_band(0, n=img.bands - 1)
+        if img.bands == 1:
+            img = img.bandjoin([img, img])
+        elif img.bands > 3:
+            img = img.extract_band(0, n=3)
+    except pyvips.Error as err:
+        first = str(err).strip().splitlines()[0] if str(err).strip() else "unreadable image"
+        raise LanternaInputError(path, f"cannot read image ({first})") from None
+    if img.bands != 3:
+        raise LanternaInputError(path, f"expected an RGB or grey image, got {img.bands} bands")
+    if img.format not in _NUMPY_FORMAT:
+        raise LanternaInputError(path, f"unsupported sample format {img.format} "
+                                 "(expected 8 or 16 bit, or float)")
+    return img
+
+
+class StackReader:
+    """A multi-light collection on disk, read lazily in row bands.
+
+    Looks like the ``(N, H, W, 3)`` float32 array :func:`load_stack` would return, for the
+    indexing the fitters use: ``reader[:, y0:y1]`` reads rows ``y0:y1`` of every image
+    (``(N, y1 − y0, W, 3)`` float32 in 0–1, bit-identical to the same slice of
+    :func:`load_stack`), ``reader[indices]`` is a reader over a subset of the images, and
+    ``reader[i]`` loads image ``i`` whole.  Band reads go through one libvips region per file
+    opened with ``access="sequential"``, so a pass from top to bottom decodes each file once
+    and holds only ``O(N · band · W)``; a read above the current position (a new pass)
+    reopens the files.  Sizes are checked from the headers when the reader is made.
+    """
+
+    dtype = np.dtype(np.float32)
+    ndim = 4
+
+    def __init__(self, files: Sequence[Path]) -> None:
+        if not files:
+            raise LanternaInputError(None, "no images to load")
+        self.files = [Path(f) for f in files]
+        first = _open_rgb(self.files[0])
+        h, w = first.height, first.width
+        for path in self.files[1:]:
+            img = _open_rgb(path)
+            if (img.height, img.width) != (h, w):
+                raise LanternaInputError(path, f"is {img.width}x{img.height}, but "
+                                         f"{self.files[0].name} is {w}x{h}: all images of a "
+                                         "collection must have the same size")
+        self.shape = (len(self.files), h, w, 3)
+        self._regions: list[tuple[pyvips.Image, pyvips.Region]] = []
+        self._next_row = 0
+
+    def __len__(self) -> int:
+        return self.shape[0]
+
+    def rows(self, y0: int, y1: int) -> npt.NDArray[np.float32]:
+        """Return rows ``y0:y1`` of every image as ``(N, y1 − y0, W, 3)`` float32 in 0–1."""
+        n, h, w, _ = self.shape
+        y0, y1 = max(0, y0), min(h, y1)
+        out = np.empty((n, max(0, y1 - y0), w, 3), np.float32)
+        if y1 <= y0:
+            return out
+        if not self._regions or y0 < self._next_row:
+            self._regions = []
+            for path in self.files:
+                img = _open_rgb(path)
+                self._regions.append((img, pyvips.Region.new(img)))
+        for i, (path, (img, region)) in enumerate(zip(self.files, self._regions, strict=True)):
+            try:
+                raw = region.fetch(0, y0, w, y1 - y0)
+            except pyvips.Error as err:
+                self._regions = []
+                first = str(err).strip().splitlines()[0] if str(err).strip() else "read error"
+                raise LanternaInputError(path, f"cannot read image ({first})") from None
+            band = np.frombuffer(raw, _NUMPY_FORMAT[img.format]).reshape(y1 - y0, w, 3)
+            if img.format in _FULL_SCALE:
+                out[i] = band.astype(np.float32) / np.float32(_FULL_SCALE[img.format])
+            else:
+                out[i] = band
+        self._next_row = y1
+        return out
+
+    def subset(self, indices: Sequence[int] | npt.NDArray[np.integer]) -> StackReader:
+        """Return a reader over the images ``indices`` (in that order)."""
+        sub = object.__new__(StackReader)
+        sub.files = [self.files[int(i)] for i in indices]
+        sub.shape = (len(sub.files), *self.shape[1:])
+        sub._regions = []
+        sub._next_row = 0
+        return sub
+
+    def __getitem__(self, key: Any) -> Any:
+        if isinstance(key, (int, np.integer)):
+            return load_image(self.files[int(key)])
+        if isinstance(key, tuple) and len(key) == 2 and key[0] == slice(None) \
+                and isinstance(key[1], slice) and key[1].step in (None, 1):
+            start, stop, _ = key[1].indices(self.shape[1])
+            return self.rows(start, stop)
+        if isinstance(key, (list, np.ndarray)):
+            return self.subset(np.asarray(key, np.intp).reshape(-1))
+        raise TypeError(f"StackReader supports [i], [indices] and [:, y0:y1], not {key!r}")

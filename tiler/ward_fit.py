@@ -25,6 +25,8 @@ from dataclasses import dataclass
 import numpy as np
 import numpy.typing as npt
 
+from .stack import StackReader
+
 #: ``glossLimits`` of the written layer and the range of the α grid.
 GLOSS_LIMITS = (0.03, 0.6)
 #: Number of α values tried (log-spaced, snapped to the 8-bit gloss levels).
@@ -86,7 +88,7 @@ class Ward:
         return out
 
 
-def fit_ward(stack: npt.NDArray[np.floating], lights: npt.NDArray[np.floating],
+def fit_ward(stack: npt.NDArray[np.floating] | StackReader, lights: npt.NDArray[np.floating],
              normals: npt.NDArray[np.floating], *, alphas: npt.NDArray[np.float64] | None = None,
              band_rows: int = 32
              ) -> tuple[npt.NDArray[np.float32], npt.NDArray[np.float32], npt.NDArray[np.float32]]:
@@ -95,7 +97,8 @@ def fit_ward(stack: npt.NDArray[np.floating], lights: npt.NDArray[np.floating],
     Parameters
     ----------
     stack : ndarray, shape (N, H, W, 3)
-        Float 0–1, taken as linear radiance as stored (see the module docstring).
+        Float 0–1, taken as linear radiance as stored (see the module docstring), or a
+        :class:`~lanterna.tiler.stack.StackReader` read band by band.
     lights : ndarray, shape (N, 3)
         Unit light directions.
     normals : ndarray, shape (H, W, 3)
