@@ -74,13 +74,7 @@ def _parser() -> argparse.ArgumentParser:
                      help="a spectral band (single-band image) shown as a grey layer; repeatable")
     imp.add_argument("--fusion", action="append", default=[], metavar="A,B,C",
                      help="a false-colour layer from three bands mapped to R,G,B; repeatable")
-    imp.add_argument("-o", "--output", type=Path, required=True, help="dataset folder to create")
-    imp.add_argument("--name", help="dataset name in URLs (default: the output folder's name)")
-    imp.add_argument("--label", help="human-readable label (default: the source's name)")
-    imp.add_argument("--base-url", default=DEFAULT_BASE_URL,
-                     help=f"URL the data root is published at (default {DEFAULT_BASE_URL})")
-    imp.add_argument("--tile-size", type=int, default=256, help="tile size (default 256)")
-    imp.add_argument("--force", action="store_true", help="replace an existing output")
+    _dataset_args(imp, label_default="the source's name")
     imp.set_defaults(func=_cmd_import)
 
     _fit_parser(sub)
@@ -113,13 +107,7 @@ def _fit_parser(sub: argparse._SubParsersAction[argparse.ArgumentParser]) -> Non
                      help="model to fit; repeat for several (one load of the images)")
     fit.add_argument("--terms", type=int, default=9, choices=[4, 9, 16],
                      help="HSH terms (default 9)")
-    fit.add_argument("-o", "--output", type=Path, required=True, help="dataset folder to create")
-    fit.add_argument("--name", help="dataset name in URLs (default: the output folder's name)")
-    fit.add_argument("--label", help="human-readable label (default: the image folder's name)")
-    fit.add_argument("--base-url", default=DEFAULT_BASE_URL,
-                     help=f"URL the data root is published at (default {DEFAULT_BASE_URL})")
-    fit.add_argument("--tile-size", type=int, default=256, help="tile size (default 256)")
-    fit.add_argument("--force", action="store_true", help="replace an existing output")
+    _dataset_args(fit, label_default="the image folder's name")
     fit.set_defaults(func=_cmd_fit)
 
 
@@ -196,6 +184,17 @@ def _cmd_annotate_list(args: argparse.Namespace) -> int:
             print(f"  level {level['level']}  {level['width']}x{level['height']}  "
                   f"{level.get('short') or '-'}{long}")
     return 0
+
+
+def _dataset_args(p: argparse.ArgumentParser, *, label_default: str) -> None:
+    """The options of every command that writes a dataset (import, fit)."""
+    p.add_argument("-o", "--output", type=Path, required=True, help="dataset folder to create")
+    p.add_argument("--name", help="dataset name in URLs (default: the output folder's name)")
+    p.add_argument("--label", help=f"human-readable label (default: {label_default})")
+    p.add_argument("--base-url", default=DEFAULT_BASE_URL,
+                   help=f"URL the data root is published at (default {DEFAULT_BASE_URL})")
+    p.add_argument("--tile-size", type=int, default=256, help="tile size (default 256)")
+    p.add_argument("--force", action="store_true", help="replace an existing output")
 
 
 def _serve_args(p: argparse.ArgumentParser) -> None:

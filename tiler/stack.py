@@ -22,27 +22,16 @@ def load_image(path: Path) -> npt.NDArray[np.float32]:
     JPEG, PNG and TIFF, 8 or 16 bit; grey images are repeated to RGB and alpha is dropped.
     Float TIFFs are taken as already in 0–1.
     """
+    img = _open_rgb(path)
     try:
-        img = pyvips.Image.new_from_file(str(path), access="sequential")
-        if img.hasalpha():
-            img = img.extract_band(0, n=img.bands - 1)
-        if img.bands == 1:
-            img = img.bandjoin([img, img])
-        elif img.bands > 3:
-            img = img.extract_band(0, n=3)
         array = img.numpy()
     except pyvips.Error as err:
         first = str(err).strip().splitlines()[0] if str(err).strip() else "unreadable image"
         raise LanternaInputError(path, f"cannot read image ({first})") from None
-    if img.bands != 3:
-        raise LanternaInputError(path, f"expected an RGB or grey image, got {img.bands} bands")
     out: npt.NDArray[np.float32] = np.asarray(array, np.float32).reshape(img.height, img.width, 3)
     if img.format in _FULL_SCALE:
         return out / np.float32(_FULL_SCALE[img.format])
-    if img.format in ("float", "double"):
-        return out
-    raise LanternaInputError(path, f"unsupported sample format {img.format} "
-                             "(expected 8 or 16 bit, or float)")
+    return out  # float or double (_open_rgb refuses other formats)
 
 
 def load_stack(files: Sequence[Path]) -> npt.NDArray[np.float32]:
