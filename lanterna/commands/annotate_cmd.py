@@ -1,0 +1,85 @@
+"""``lanterna annotate``: build or list a layer's multi-scale annotation overlay."""
+
+from __future__ import annotations
+
+import argparse
+import sys
+from pathlib import Path
+
+from .common import SubParsers
+
+ANNOTATE_EXAMPLES = """examples:
+  lanterna annotate build datasets/obj --layer vis --patches patches/
+      composite patches named L_X_Y_W_H_O_INFO.png (level, full-resolution rectangle, order,
+      free text) into the overlay levels of layer vis
+  lanterna annotate build datasets/obj --layer vis --gimp levels/ --texts texts.json
+      one transparent PNG per level (level_2.png or 2.png); texts.json is
+      {"2": {"short": "Cracks", "long": "<p>Cracks in the glaze …</p>"}}
+  lanterna annotate list datasets/obj                  levels, texts and patches per layer
+
+The dataset is rewritten atomically: the previous overlay of the layer stays until the new one is
+complete. Rejected files are listed one per line; the valid ones are still built (exit status 1).
+"""
+
+
+def register(sub: SubParsers) -> None:
+    ann = sub.add_parser("annotate", help="build or list a layer's multi-scale annotation overlay",
+                         epilog=ANNOTATE_EXAMPLES,
+                         formatter_class=argparse.RawDescriptionHelpFormatter)
+    ann_sub = ann.add_subparsers(required=True, metavar="ACTION")
+    build = ann_sub.add_parser("build", help="build (or replace) the overlay of one layer",
+                               epilog=ANNOTATE_EXAMPLES,
+                               formatter_class=argparse.RawDescriptionHelpFormatter)
+    build.add_argument("dataset", type=Path, metavar="DATASET", help="dataset folder")
+    build.add_argument("--layer", required=True, metavar="ID", help="layer id")
+    src = build.add_mutually_exclusive_group(required=True)
+    src.add_argument("--patches", type=Path, metavar="DIR",
+                     help="folder of patches named L_X_Y_W_H_O_INFO.png (RGBA PNG)")
+    src.add_argument("--gimp", type=Path, metavar="DIR",
+                     help="folder of one transparent PNG per level: level_L.png or L.png")
+    build.add_argument("--texts", type=Path, metavar="FILE",
+                       help='JSON {"L": {"short": text, "long": html}}; levels without an entry '
+                            "keep their previous texts")
+    build.set_defaults(func=run_build)
+    lst = ann_sub.add_parser("list", help="show overlay levels, texts and patch counts")
+    lst.add_argument("dataset", type=Path, metavar="DATASET", help="dataset folder")
+    lst.set_defaults(func=run_list)
+
+
+def run_build(args: argparse.Namespace) -> int:
+    from lanterna.tiler.overlays import OverlayInputError, build_overlays
+
+    try:
+        report = build_overlays(args.dataset, args.layer, patches_dir=args.patches,
+                                gimp_dir=args.gimp, texts=args.texts)
+    except OverlayInputError as err:
+        for line in err.errors:
+            print(f"lanterna: error: {line}", file=sys.stderr)
+        raise
+    for line in report.warnings:
+        print(f"lanterna: warning: {line}", file=sys.stderr)
+    for line in report.errors:
+        print(f"lanterna: error: {line}", file=sys.stderr)
+    levels = ", ".join(str(level) for level in report.levels)
+    print(f"layer {report.layer}: overlay levels {levels} from {report.patches} patch(es) "
+          f"written to {args.dataset}")
+    if report.errors:
+        print(f"lanterna: {len(report.errors)} file(s) rejected", file=sys.stderr)
+        return 1
+    return 0
+
+
+def run_list(args: argparse.Namespace) -> int:
+    from lanterna.tiler.overlays import overlay_summary
+
+    for row in overlay_summary(args.dataset):
+        if not row["levels"]:
+            print(f"{row['id']}: no overlay")
+            continue
+        origin = f" (from {row['source']})" if row["source"] else ""
+        print(f"{row['id']}: {len(row['levels'])} level(s), {row['patches']} patch(es){origin}")
+        for level in row["levels"]:
+            long = " (long text)" if level.get("long") else ""
+            print(f"  level {level['level']}  {level['width']}x{level['height']}  "
+                  f"{level.get('short') or '-'}{long}")
+    return 0

@@ -1,0 +1,36 @@
+"""Options shared by several commands."""
+
+from __future__ import annotations
+
+import argparse
+from pathlib import Path
+from typing import TypeAlias
+
+from lanterna.tiler.dataset import DEFAULT_BASE_URL
+from lanterna.tiler.errors import LanternaInputError
+
+#: What ``sub.add_parser`` is called on.
+SubParsers: TypeAlias = "argparse._SubParsersAction[argparse.ArgumentParser]"
+
+
+def dataset_args(p: argparse.ArgumentParser, *, label_default: str) -> None:
+    """The options of every command that writes a dataset (import, fit)."""
+    p.add_argument("-o", "--output", type=Path, required=True, help="dataset folder to create")
+    p.add_argument("--name", help="dataset name in URLs (default: the output folder's name)")
+    p.add_argument("--label", help=f"human-readable label (default: {label_default})")
+    p.add_argument("--base-url", default=DEFAULT_BASE_URL,
+                   help=f"URL the data root is published at (default {DEFAULT_BASE_URL})")
+    p.add_argument("--tile-size", type=int, default=256, help="tile size (default 256)")
+    p.add_argument("--force", action="store_true", help="replace an existing output")
+
+
+def check_tile_size(tile_size: int) -> None:
+    """Refuse a tile size outside 64–4096."""
+    if tile_size < 64 or tile_size > 4096:
+        raise LanternaInputError(None, "--tile-size must be between 64 and 4096")
+
+
+def serve_args(p: argparse.ArgumentParser) -> None:
+    """The options of every command that runs the server (serve, demo)."""
+    p.add_argument("--host", default="127.0.0.1", help="interface to bind (default 127.0.0.1)")
+    p.add_argument("--port", type=int, default=8000, help="port (default 8000)")

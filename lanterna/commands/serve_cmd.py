@@ -1,0 +1,54 @@
+"""``lanterna serve`` and ``lanterna demo``: the local server (and the demo dataset)."""
+
+from __future__ import annotations
+
+import argparse
+from pathlib import Path
+
+from lanterna.tiler.errors import LanternaInputError
+
+from .common import SubParsers, serve_args
+
+
+def register(sub: SubParsers) -> None:
+    srv = sub.add_parser("serve", help="serve a folder of datasets and the viewer")
+    srv.add_argument("root", type=Path, help="folder holding datasets")
+    serve_args(srv)
+    srv.set_defaults(func=run_serve)
+
+    demo = sub.add_parser("demo", help="make the demo dataset (if missing) and serve it")
+    demo.add_argument("--root", type=Path, default=Path("datasets"),
+                      help="data root (default ./datasets)")
+    demo.add_argument("--no-serve", action="store_true", help="only build the dataset")
+    demo.add_argument("--force", action="store_true", help="rebuild the demo dataset")
+    serve_args(demo)
+    demo.set_defaults(func=run_demo)
+
+
+def run_serve(args: argparse.Namespace) -> int:
+    from lanterna.server.app import create_app
+
+    root = args.root.resolve()
+    if not root.is_dir():
+        raise LanternaInputError(args.root, "not a folder")
+    app = create_app({"DATA_ROOT": root})
+    url = f"http://{args.host}:{args.port}/"
+    for desc in sorted(root.glob("*/lanterna.json")):
+        manifest = f"{url}datasets/{desc.parent.name}/manifest.json"
+        print(f"  {desc.parent.name}: {url}viewer/?manifest={manifest}")
+    print(f"Lanterna serving {root} at {url}  (Ctrl-C to stop)", flush=True)
+    app.run(host=args.host, port=args.port, threaded=True)
+    return 0
+
+
+def run_demo(args: argparse.Namespace) -> int:
+    from lanterna.tiler.demo import build_demo
+
+    out = args.root / "demo"
+    if args.force or not (out / "lanterna.json").is_file():
+        print(f"building the demo dataset in {out} …", flush=True)
+        build_demo(out, force=True)
+    if args.no_serve:
+        print(f"demo dataset at {out}")
+        return 0
+    return run_serve(argparse.Namespace(root=args.root, host=args.host, port=args.port))
