@@ -1,4 +1,8 @@
-"""``lanterna serve`` and ``lanterna demo``: the local server (and the demo dataset)."""
+"""``lanterna serve`` and ``lanterna demo``: the local server (and the demo dataset).
+
+Without ``--workers`` the Flask development server runs (one process, a thread per request);
+with ``--workers N`` gunicorn runs N worker processes (``lanterna.server.wsgi``).
+"""
 
 from __future__ import annotations
 
@@ -14,6 +18,7 @@ def register(sub: SubParsers) -> None:
     srv = sub.add_parser("serve", help="serve a folder of datasets and the viewer")
     srv.add_argument("root", type=Path, help="folder holding datasets")
     serve_args(srv)
+    _worker_args(srv)
     srv.set_defaults(func=run_serve)
 
     demo = sub.add_parser("demo", help="make the demo dataset (if missing) and serve it")
@@ -22,7 +27,16 @@ def register(sub: SubParsers) -> None:
     demo.add_argument("--no-serve", action="store_true", help="only build the dataset")
     demo.add_argument("--force", action="store_true", help="rebuild the demo dataset")
     serve_args(demo)
+    _worker_args(demo)
     demo.set_defaults(func=run_demo)
+
+
+def _worker_args(p: argparse.ArgumentParser) -> None:
+    p.add_argument("--workers", type=int, default=None, metavar="N",
+                   help="serve with gunicorn, N worker processes (default: the Flask "
+                        "development server)")
+    p.add_argument("--threads", type=int, default=None, metavar="T",
+                   help="threads per gunicorn worker (default 8; needs --workers)")
 
 
 def run_serve(args: argparse.Namespace) -> int:
@@ -31,13 +45,26 @@ def run_serve(args: argparse.Namespace) -> int:
     root = args.root.resolve()
     if not root.is_dir():
         raise LanternaInputError(args.root, "not a folder")
-    app = create_app({"DATA_ROOT": root})
+    workers: int | None = getattr(args, "workers", None)
+    threads: int | None = getattr(args, "threads", None)
+    if workers is not None and workers < 1:
+        raise LanternaInputError(None, "--workers must be at least 1")
+    if threads is not None and (workers is None or threads < 1):
+        raise LanternaInputError(None, "--threads needs --workers and must be at least 1")
     url = f"http://{args.host}:{args.port}/"
     for desc in sorted(root.glob("*/lanterna.json")):
         manifest = f"{url}datasets/{desc.parent.name}/manifest.json"
         print(f"  {desc.parent.name}: {url}viewer/?manifest={manifest}")
-    print(f"Lanterna serving {root} at {url}  (Ctrl-C to stop)", flush=True)
-    app.run(host=args.host, port=args.port, threaded=True)
+    if workers is None:
+        print(f"Lanterna serving {root} at {url}  (Ctrl-C to stop)", flush=True)
+        create_app({"DATA_ROOT": root}).run(host=args.host, port=args.port, threaded=True)
+        return 0
+    from lanterna.server.wsgi import DEFAULT_THREADS, run_gunicorn
+
+    threads = threads or DEFAULT_THREADS
+    print(f"Lanterna serving {root} at {url} with gunicorn, {workers} workers × {threads} "
+          "threads  (Ctrl-C to stop)", flush=True)
+    run_gunicorn(root, args.host, args.port, workers, threads)
     return 0
 
 
@@ -51,4 +78,5 @@ def run_demo(args: argparse.Namespace) -> int:
     if args.no_serve:
         print(f"demo dataset at {out}")
         return 0
-    return run_serve(argparse.Namespace(root=args.root, host=args.host, port=args.port))
+    return run_serve(argparse.Namespace(root=args.root, host=args.host, port=args.port,
+                                        workers=args.workers, threads=args.threads))
