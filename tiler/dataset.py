@@ -25,6 +25,7 @@ from lanterna.manifests.build import build_manifest
 
 from .errors import LanternaInputError
 from .pyramid import vips_from_array, write_pyramid
+from .tiff import write_tiff
 
 DEFAULT_BASE_URL = "http://127.0.0.1:8000/datasets"
 RELIGHT_TYPE = "LanternaRelight"
@@ -55,7 +56,8 @@ class DatasetWriter:
     def __init__(self, out: Path, *, name: str, label: str, width: int, height: int,
                  base_url: str = DEFAULT_BASE_URL, tile_size: int = 256,
                  source: str | None = None, force: bool = False,
-                 summary: str | None = None, quality: dict[str, Any] | None = None) -> None:
+                 summary: str | None = None, quality: dict[str, Any] | None = None,
+                 tiff: bool = False) -> None:
         self.out = Path(out)
         self.name = check_identifier(name, "dataset name")
         self.label = label
@@ -66,6 +68,7 @@ class DatasetWriter:
         self.summary = summary
         self.quality = quality
         self.force = force
+        self.tiff = tiff
         self.images: dict[str, dict[str, Any]] = {}
         self.layers: list[dict[str, Any]] = []
         self._shared: dict[str, str] = {}
@@ -102,6 +105,8 @@ class DatasetWriter:
         Images given the same ``share_key`` (e.g. the resolved path of a normal map used by several
         layers) are stored and served once: later calls return the first image's service.
         ``size`` is the expected ``(width, height)`` when it is not the canvas's (overlay levels).
+        With ``tiff=True`` the image is also written as ``tiff/<identifier>.tif``, a pyramidal
+        TIFF for the IIIF image server (recorded as the image's ``tiff`` field).
         """
         assert self._tmp is not None, "use DatasetWriter as a context manager"
         if share_key is not None and share_key in self._shared:
@@ -122,6 +127,10 @@ class DatasetWriter:
                       tile_size=self.tile_size)
         self.images[identifier] = {"format": fmt, "width": vimg.width, "height": vimg.height,
                                    "bands": vimg.bands}
+        if self.tiff:
+            (self._tmp / "tiff").mkdir(exist_ok=True)
+            write_tiff(vimg, self._tmp / "tiff" / f"{identifier}.tif", fmt=fmt)
+            self.images[identifier]["tiff"] = f"tiff/{identifier}.tif"
         if share_key is not None:
             self._shared[share_key] = identifier
         return self._service(identifier)

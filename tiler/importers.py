@@ -32,12 +32,13 @@ def load_rgb_image(path: Path) -> pyvips.Image:
 def import_sources(sources: Sequence[Path], out: Path, *, name: str | None = None,
                    label: str | None = None, bands: dict[str, Path] | None = None,
                    fusions: Sequence[Sequence[str]] = (), base_url: str = DEFAULT_BASE_URL,
-                   tile_size: int = 256, force: bool = False) -> Path:
+                   tile_size: int = 256, force: bool = False, tiff: bool = False) -> Path:
     """Import sources as the layers of dataset ``out`` (in order; the first is the default).
 
     A source is a ``.ptm``, ``.rti``, a Relight web-format folder, an image, or a dataset
     description ``.json`` (Lanterna's or the seed paper's scene format). ``bands`` adds one grey
-    layer per spectral band, ``fusions`` one false-colour layer per band triple.
+    layer per spectral band, ``fusions`` one false-colour layer per band triple. ``tiff`` also
+    writes a pyramidal TIFF per image (``tiff/<image>.tif``) for the IIIF image server.
     """
     from .description import plan_description
 
@@ -60,7 +61,8 @@ def import_sources(sources: Sequence[Path], out: Path, *, name: str | None = Non
                                "dataset name")
     ds_label = label or fields.get("label") or first.stem
     return build_dataset(plans, out, name=ds_name, label=ds_label, base_url=base_url,
-                         tile_size=tile_size, force=force, summary=fields.get("summary"))
+                         tile_size=tile_size, force=force, summary=fields.get("summary"),
+                         tiff=tiff)
 
 
 def import_source(source: Path, out: Path, **kwargs: object) -> Path:

@@ -175,8 +175,12 @@ def _array_plan(lid: str, label: str, array: npt.NDArray[np.uint8], source: str)
 
 def build_dataset(plans: Sequence[LayerPlan], out: Path, *, name: str, label: str,
                   base_url: str = DEFAULT_BASE_URL, tile_size: int = 256, force: bool = False,
-                  summary: str | None = None, quality: dict[str, Any] | None = None) -> Path:
-    """Write the planned layers (same size, unique ids) as one dataset at ``out``."""
+                  summary: str | None = None, quality: dict[str, Any] | None = None,
+                  tiff: bool = False) -> Path:
+    """Write the planned layers (same size, unique ids) as one dataset at ``out``.
+
+    ``tiff=True`` also writes a pyramidal TIFF per image for the IIIF image server.
+    """
     if not plans:
         raise LanternaInputError(None, "nothing to import: give at least one source")
     w, h = plans[0].width, plans[0].height
@@ -191,7 +195,7 @@ def build_dataset(plans: Sequence[LayerPlan], out: Path, *, name: str, label: st
     with DatasetWriter(out, name=name, label=label, width=w, height=h, base_url=base_url,
                        tile_size=tile_size, source=", ".join(p.source for p in plans),
                        force=force, summary=summary,
-                       quality=quality) as ds:
+                       quality=quality, tiff=tiff) as ds:
         for plan in plans:
             plan.add(ds)
     return Path(out)

@@ -22,6 +22,9 @@ def dataset_args(p: argparse.ArgumentParser, *, label_default: str) -> None:
                    help=f"URL the data root is published at (default {DEFAULT_BASE_URL})")
     p.add_argument("--tile-size", type=int, default=256, help="tile size (default 256)")
     p.add_argument("--force", action="store_true", help="replace an existing output")
+    p.add_argument("--tiff", action="store_true",
+                   help="also write a pyramidal TIFF per image (tiff/<image>.tif) for the IIIF "
+                        "image server at /iiif/3/ (and IIPImage or Cantaloupe)")
 
 
 def check_tile_size(tile_size: int) -> None:

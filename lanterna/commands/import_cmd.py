@@ -39,6 +39,6 @@ def run(args: argparse.Namespace) -> int:
         raise LanternaInputError(None, "nothing to import: give a SOURCE or --band NAME=FILE")
     out = import_sources(args.sources, args.output, name=args.name, label=args.label,
                          bands=bands, fusions=fusions, base_url=args.base_url,
-                         tile_size=args.tile_size, force=args.force)
+                         tile_size=args.tile_size, force=args.force, tiff=args.tiff)
     print(f"wrote {out}")
     return 0
