@@ -18,13 +18,14 @@ import numpy.typing as npt
 
 from .dataset import DEFAULT_BASE_URL
 from .errors import LanternaInputError
+from .fit_bands import RANK_WINDOW, SHADOW_FRACTION, normals_band, ptm_rgb_band
 from .hsh_basis import hsh_weights
 from .hsh_fit import fit_hsh
 from .hsh_model import HSH_TERMS, Hsh
 from .layers import add_hsh_layer, add_ptm_layer, add_svbrdf_layer, encode_normals
 from .lp import read_lp
 from .plans import LayerPlan, build_dataset
-from .ptm_fit import LUMINANCE_WEIGHTS, fit_ptm_lrgb, ptm_design_matrix, quantize_coefficients
+from .ptm_fit import fit_ptm_lrgb, ptm_design_matrix, quantize_coefficients
 from .ptm_model import Ptm
 from .stack import StackReader
 from .ward_fit import Ward, fit_ward, predict_ward, quantize_ward
@@ -34,10 +35,6 @@ Stack = npt.NDArray[np.float32]
 Images = Stack | StackReader
 Lights = npt.NDArray[np.float64]
 
-#: Per-pixel rank window kept by the robust photometric stereo (fractions of the light count).
-RANK_WINDOW = (0.25, 0.9)
-#: Samples darker than this fraction of the pixel's brightest sample count as shadowed.
-SHADOW_FRACTION = 0.05
 #: Every ``HOLDOUT_EVERY``-th light (starting with the first) is held out for the report.
 HOLDOUT_EVERY = 10
 
@@ -74,34 +71,13 @@ def fit_normals(images: Images, lights: Lights, *, rank_window: tuple[float, flo
         raise ValueError(f"{n} images but lights of shape {lights.shape}")
     if n < 3 or np.linalg.matrix_rank(lights) < 3:
         raise ValueError("photometric stereo needs at least 3 non-coplanar lights")
-    lo, hi = int(np.floor(rank_window[0] * n)), int(np.ceil(rank_window[1] * n))
-    lum_w = np.asarray(LUMINANCE_WEIGHTS, np.float32)
-    lf = lights.astype(np.float64)
-    outer = np.einsum("ni,nj->nij", lf, lf)  # (N, 3, 3)
     normals = np.empty((h, w, 3), np.float32)
     albedo = np.empty((h, w, 3), np.float32)
     for y0 in range(0, h, band_rows):
-        band = images[:, y0:y0 + band_rows]  # (N, b, W, 3)
-        b = band.shape[1]
-        lum = (band @ lum_w).reshape(n, -1).astype(np.float64)  # (N, P)
-        lit = lum > shadow * lum.max(axis=0, keepdims=True)
-        ranks = np.argsort(np.argsort(lum, axis=0, kind="stable"), axis=0, kind="stable")
-        keep = lit & (ranks >= lo) & (ranks < hi)
-        few = keep.sum(axis=0) < 3
-        keep[:, few] = lit[:, few]
-        wts = keep.astype(np.float64)
-        a = np.einsum("np,nij->pij", wts, outer) + 1e-9 * np.eye(3)
-        rhs = np.einsum("np,ni->pi", wts * lum, lf)
-        g = np.linalg.solve(a, rhs[..., None])[..., 0]  # (P, 3)
-        norm = np.linalg.norm(g, axis=1, keepdims=True)
-        nrm = np.where(norm > 1e-12, g / np.where(norm > 1e-12, norm, 1.0), [0.0, 0.0, 1.0])
-        nrm *= np.where(nrm[:, 2:3] < 0, -1.0, 1.0)
-        shade = np.maximum(nrm @ lf.T, 0.0).T * wts  # (N, P)
-        colour = band.reshape(n, -1, 3).astype(np.float64)
-        num = np.einsum("np,npc->pc", shade, colour)
-        den = np.maximum((shade * shade).sum(axis=0), 1e-12)[:, None]
-        normals[y0:y0 + b] = nrm.reshape(b, w, 3)
-        albedo[y0:y0 + b] = (num / den).reshape(b, w, 3)
+        out = normals_band(images[:, y0:y0 + band_rows], lights, rank_window=rank_window,
+                           shadow=shadow)
+        normals[y0:y0 + band_rows] = out["normals"]
+        albedo[y0:y0 + band_rows] = out["albedo"]
     return Normals(normals, albedo)
 
 
@@ -120,8 +96,7 @@ def fit_ptm_rgb(images: Images, lights: Lights, *, band_rows: int = 64) -> Ptm:
     pinv = (np.linalg.pinv(basis) * 255.0).astype(np.float32)  # (6, N)
     coeffs = np.empty((h, w, 3, 6), np.float32)
     for y0 in range(0, h, band_rows):
-        coeffs[y0:y0 + band_rows] = np.einsum("kn,nbwc->bwck", pinv,
-                                              images[:, y0:y0 + band_rows])
+        coeffs[y0:y0 + band_rows] = ptm_rgb_band(images[:, y0:y0 + band_rows], pinv)["coeffs"]
     q, scale, bias = quantize_coefficients(coeffs)
     return Ptm(colorspace="rgb", coefficients=q, scale=scale, bias=bias)
 

@@ -5,6 +5,7 @@ from __future__ import annotations
 import numpy as np
 import numpy.typing as npt
 
+from .fit_bands import hsh_band
 from .hsh_basis import hsh_weights
 from .hsh_model import HSH_TERMS, Hsh
 from .stack import StackReader
@@ -56,9 +57,23 @@ def fit_hsh(images: npt.NDArray[np.uint8] | npt.NDArray[np.floating] | StackRead
     coeffs = np.empty((h, w, 3, terms), np.float32)
     for y0 in range(0, h, band_rows):
         band = stack[:, y0:y0 + band_rows].astype(np.float32) * scale_in  # (N, b, W, 3)
-        coeffs[y0:y0 + band_rows] = np.einsum("kn,nbwc->bwck", pinv, band)
-    lo = coeffs.min(axis=(0, 1, 2))
-    hi = coeffs.max(axis=(0, 1, 2))
-    span = np.where(hi > lo, hi - lo, 1.0).astype(np.float32)
-    q = np.rint((coeffs - lo) / span * 255.0).clip(0, 255).astype(np.uint8)
-    return Hsh(q, span.astype(np.float32), lo.astype(np.float32))
+        coeffs[y0:y0 + band_rows] = hsh_band(band, pinv)["coeffs"]
+    span, lo = hsh_quantisation(coeffs.min(axis=(0, 1, 2)), coeffs.max(axis=(0, 1, 2)))
+    return Hsh(hsh_quantize(coeffs, span, lo), span, lo)
+
+
+def hsh_quantisation(lo: npt.ArrayLike, hi: npt.ArrayLike
+                     ) -> tuple[npt.NDArray[np.float32], npt.NDArray[np.float32]]:
+    """``(scale, bias)`` per term from its global ``lo``/``hi``: ``scale = hi − lo`` (1 if 0)."""
+    lo32 = np.asarray(lo, np.float32)
+    hi32 = np.asarray(hi, np.float32)
+    span = np.where(hi32 > lo32, hi32 - lo32, 1.0).astype(np.float32)
+    return span, lo32
+
+
+def hsh_quantize(coeffs: npt.NDArray[np.floating], scale: npt.NDArray[np.float32],
+                 bias: npt.NDArray[np.float32]) -> npt.NDArray[np.uint8]:
+    """``rint((a − bias) / scale · 255)`` clipped to bytes (terms on the last axis)."""
+    out: npt.NDArray[np.uint8] = np.rint((coeffs - bias) / scale * 255.0).clip(0, 255).astype(
+        np.uint8)
+    return out

@@ -13,11 +13,12 @@ from __future__ import annotations
 import numpy as np
 import numpy.typing as npt
 
+from .fit_bands import LUMINANCE_WEIGHTS, ptm_lrgb_band
 from .ptm_model import Ptm
 from .stack import StackReader
 
-#: Rec. 709 luminance weights used by ptmfit (``computepoly.c``).
-LUMINANCE_WEIGHTS = (0.2125, 0.7154, 0.0721)
+__all__ = ["LUMINANCE_WEIGHTS", "fit_ptm_lrgb", "ptm_design_matrix", "ptm_quantisation",
+           "ptm_quantize", "quantize_coefficients"]
 
 #: Default number of image rows processed at once.
 DEFAULT_BAND_ROWS = 64
@@ -91,15 +92,30 @@ def quantize_coefficients(
         raise ValueError("coefficients must not be empty")
     if not np.all(np.isfinite(flat)):
         raise ValueError("coefficients must be finite")
-    lo = np.minimum(flat.min(axis=0).astype(np.float64), 0.0)
-    hi = np.maximum(flat.max(axis=0).astype(np.float64), 0.0)
-    span = hi - lo
+    scale, bias = ptm_quantisation(flat.min(axis=0), flat.max(axis=0))
+    return ptm_quantize(flat, scale, bias).reshape(a.shape), scale, bias
+
+
+def ptm_quantisation(lo: npt.ArrayLike, hi: npt.ArrayLike
+                     ) -> tuple[npt.NDArray[np.float32], npt.NDArray[np.int32]]:
+    """Return ``(scale, bias)`` per coefficient for the coefficients' global ``lo``/``hi``.
+
+    The range is widened to include 0; see :func:`quantize_coefficients`.
+    """
+    lo64 = np.minimum(np.asarray(lo, np.float64), 0.0)
+    hi64 = np.maximum(np.asarray(hi, np.float64), 0.0)
+    span = hi64 - lo64
     scale = np.where(span > 0.0, span / 254.0, 1.0).astype(np.float32)
-    scale64 = scale.astype(np.float64)
-    bias = np.rint(-lo / scale64).astype(np.int32)
-    q = np.rint(flat / scale64 + bias)
-    out = np.clip(q, 0, 255).astype(np.uint8).reshape(a.shape)
-    return out, scale, bias
+    bias = np.rint(-lo64 / scale.astype(np.float64)).astype(np.int32)
+    return scale, bias
+
+
+def ptm_quantize(values: npt.NDArray[np.floating], scale: npt.NDArray[np.float32],
+                 bias: npt.NDArray[np.int32]) -> npt.NDArray[np.uint8]:
+    """``rint(a / scale + bias)`` clipped to bytes (coefficients on the last axis)."""
+    q = np.rint(values / scale.astype(np.float64) + bias)
+    out: npt.NDArray[np.uint8] = np.clip(q, 0, 255).astype(np.uint8)
+    return out
 
 
 def fit_ptm_lrgb(
@@ -162,21 +178,13 @@ def fit_ptm_lrgb(
         raise ValueError(f"band_rows must be at least 1, got {band_rows}")
 
     pinv = np.linalg.pinv(basis).astype(np.float32)  # (6, N), computed once
-    weights = np.asarray(LUMINANCE_WEIGHTS, dtype=np.float32)
     coeffs = np.empty((height, width, 6), dtype=np.float32)
     rgb = np.empty((height, width, 3), dtype=np.uint8)
     for r0 in range(0, height, band_rows):
         r1 = min(r0 + band_rows, height)
         band = images[:, r0:r1].astype(np.float32) * np.float32(to_unit)  # (N, h, W, 3)
-        lum = band @ weights  # (N, h, W)
-        peak = lum.max(axis=0)
-        safe = np.where(peak > 1e-6, peak, np.float32(1.0))
-        lum_n = np.where(peak > 1e-6, lum / safe, np.float32(0.0))  # (N, h, W)
-        flat = lum_n.reshape(n, -1) * np.float32(255.0)
-        coeffs[r0:r1] = (pinv @ flat).T.reshape(r1 - r0, width, 6)
-        energy = np.einsum("nhw,nhw->hw", lum_n, lum_n)
-        proj = np.einsum("nhwc,nhw->hwc", band, lum_n)
-        colour = proj / np.where(energy > 1e-12, energy, np.float32(1.0))[..., None]
-        rgb[r0:r1] = np.clip(np.rint(colour * 255.0), 0, 255).astype(np.uint8)
+        out = ptm_lrgb_band(band, pinv)
+        coeffs[r0:r1] = out["coeffs"]
+        rgb[r0:r1] = out["rgb"]
     q, scale, bias = quantize_coefficients(coeffs)
     return Ptm(colorspace="lrgb", coefficients=q, scale=scale, bias=bias, rgb=rgb)
