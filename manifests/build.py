@@ -5,6 +5,10 @@ the default visible layer). Each item is an ``Image`` (a concrete ``full/max`` U
 colour image) with two services: the ``ImageService3`` of that image and the layer's
 ``LanternaRelight`` block, so any IIIF viewer shows the colour image and Lanterna relights it.
 Layers with an overlay add ``canvas.annotations`` (:mod:`lanterna.manifests.overlays`).
+
+Every manifest built here is checked against the official IIIF Presentation 3.0 JSON Schema
+(:mod:`lanterna.manifests.validate`, a few milliseconds) before it is written, so an import never
+publishes an invalid manifest (a non-http ``--base-url`` is the usual culprit).
 """
 
 from __future__ import annotations
@@ -22,7 +26,10 @@ from iiif_prezi3 import (
     config,
 )
 
+from lanterna.tiler.errors import LanternaInputError
+
 from .overlays import overlay_pages
+from .validate import validate_manifest
 
 config.configs["helpers.auto_fields.AutoLang"].auto_lang = "en"
 
@@ -62,4 +69,9 @@ def build_manifest(desc: dict[str, Any]) -> dict[str, Any]:
     pages = overlay_pages(desc)
     if pages:
         doc["items"][0]["annotations"] = pages
+    errors = validate_manifest(doc)
+    if errors:
+        more = f" (and {len(errors) - 1} more)" if len(errors) > 1 else ""
+        raise LanternaInputError(None, "the manifest would not be valid IIIF Presentation 3.0: "
+                                 f"{errors[0]}{more}")
     return doc
