@@ -5,7 +5,7 @@ from __future__ import annotations
 import argparse
 import sys
 
-from lanterna.commands import annotate_cmd, fit_cmd, import_cmd, serve_cmd
+from lanterna.commands import annotate_cmd, export_cmd, fit_cmd, import_cmd, serve_cmd
 from lanterna.tiler.errors import LanternaInputError
 
 EXAMPLES = """examples:
@@ -20,6 +20,8 @@ EXAMPLES = """examples:
   lanterna annotate build datasets/obj --layer vis --patches patches/
                                                       multi-scale annotation overlay of a layer
   lanterna serve datasets/                            serve every dataset on http://127.0.0.1:8000/
+  lanterna export datasets/ --base-url https://example.org/iiif -o site
+                                                      static IIIF tree for any web server
   lanterna demo                                       make the demo object and serve it
 """
 
@@ -47,6 +49,7 @@ def _parser() -> argparse.ArgumentParser:
     fit_cmd.register(sub)
     annotate_cmd.register(sub)
     serve_cmd.register(sub)
+    export_cmd.register(sub)
     return parser
 
 

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import copy
 import json
+from collections.abc import Callable
 from pathlib import Path
 from typing import Any
 
@@ -61,7 +62,8 @@ def _body(doc: dict[str, Any]) -> dict[str, Any]:
     return item
 
 
-BREAKAGES = {
+Breakage = Callable[[dict[str, Any]], object]
+BREAKAGES: dict[str, tuple[Breakage, str]] = {
     "no label": (lambda m: m.pop("label"), "(root): 'label' is a required property"),
     "label not a language map": (lambda m: m.update(label="Object"), "label: 'Object' is not"),
     "unknown manifest key": (lambda m: m.update(layers=[]), "'layers' was unexpected"),
