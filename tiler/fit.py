@@ -7,7 +7,7 @@ report (:func:`leave_one_out`) treats them alike.  See ``docs/fitting.md``.
 
 from __future__ import annotations
 
-import hashlib
+import tempfile
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 from pathlib import Path
@@ -19,12 +19,15 @@ import numpy.typing as npt
 from .dataset import DEFAULT_BASE_URL
 from .errors import LanternaInputError
 from .fit_bands import RANK_WINDOW, SHADOW_FRACTION, normals_band, ptm_rgb_band
+from .fit_engine import fit_stream
 from .hsh_basis import hsh_weights
 from .hsh_fit import fit_hsh
 from .hsh_model import HSH_TERMS, Hsh
-from .layers import add_hsh_layer, add_ptm_layer, add_svbrdf_layer, encode_normals
+from .layers import add_planes_layer
 from .lp import read_lp
+from .planes import PlaneLayer
 from .plans import LayerPlan, build_dataset
+from .progress import Progress
 from .ptm_fit import fit_ptm_lrgb, ptm_design_matrix, quantize_coefficients
 from .ptm_model import Ptm
 from .stack import StackReader
@@ -122,49 +125,18 @@ def predict_hsh(model: Hsh, light: npt.NDArray[np.float64]) -> Stack:
 
 @dataclass(frozen=True)
 class Model:
-    """One fittable model: its layer id, label, fit and predict functions, and its layer."""
+    """One fittable model: its layer id, label, fit and predict functions, and its layer.
 
+    ``key`` is its CLI name (a :data:`~lanterna.tiler.fit_engine.MODEL_KEYS` entry), ``terms``
+    the HSH term count.
+    """
+
+    key: str
+    terms: int
     id: str
     label: str
     fit: Callable[[Images, Lights], Any]
     predict: Callable[[Any, npt.NDArray[np.float64]], Stack]
-    plan: Callable[[Any, str, str, str], LayerPlan]
-
-
-def _ptm_plan(ptm: Ptm, lid: str, label: str, source: str) -> LayerPlan:
-    return LayerPlan(lid, label, ptm.width, ptm.height, source,
-                     lambda ds: add_ptm_layer(ds, ptm, layer_id=lid, label=label))
-
-
-def _hsh_plan(hsh: Hsh, lid: str, label: str, source: str) -> LayerPlan:
-    return LayerPlan(lid, label, hsh.width, hsh.height, source,
-                     lambda ds: add_hsh_layer(ds, hsh, layer_id=lid, label=label))
-
-
-def _normals_key(encoded: npt.NDArray[np.uint8]) -> dict[str, str]:
-    # identical encoded normal maps (normals + ward layers of one run) are stored once
-    return {"normals": "fitted-normals-" + hashlib.sha1(encoded.tobytes()).hexdigest()}
-
-
-def _normals_plan(model: Normals, lid: str, label: str, source: str) -> LayerPlan:
-    encoded = encode_normals(model.normals)
-    h, w = encoded.shape[:2]
-    share = _normals_key(encoded)
-    return LayerPlan(lid, label, w, h, source,
-                     lambda ds: add_svbrdf_layer(ds, normals=encoded, share=share,
-                                                 layer_id=lid, label=label))
-
-
-def _ward_plan(model: Ward, lid: str, label: str, source: str) -> LayerPlan:
-    encoded = encode_normals(model.normals)
-    h, w = encoded.shape[:2]
-    share = _normals_key(encoded)
-    return LayerPlan(lid, label, w, h, source,
-                     lambda ds: add_svbrdf_layer(ds, normals=encoded, kd=model.kd, ks=model.ks,
-                                                 gloss=model.gloss,
-                                                 gloss_limits=model.gloss_limits,
-                                                 input_colorspace="linear", share=share,
-                                                 layer_id=lid, label=label))
 
 
 class _NormalsOnce:
@@ -208,17 +180,16 @@ def model_table(terms: int = 9, band_rows: int | None = None) -> dict[str, Model
     kw: dict[str, Any] = {} if band_rows is None else {"band_rows": band_rows}
     normals = _NormalsOnce(**kw)
     return {
-        "ptm": Model("ptm", "PTM RGB (fitted)", lambda s, lt: fit_ptm_rgb(s, lt, **kw),
-                     predict_ptm, _ptm_plan),
-        "ptm-lrgb": Model("ptm_lrgb", "PTM LRGB (fitted)",
-                          lambda s, lt: fit_ptm_lrgb(s, lt, **kw), predict_ptm, _ptm_plan),
-        "hsh": Model(f"hsh{terms}", f"HSH {terms} terms (fitted)",
-                     lambda s, lt: fit_hsh(s, lt, terms, **kw), predict_hsh, _hsh_plan),
-        "normals": Model("normals", "Normals (robust photometric stereo)", normals,
-                         predict_normals, _normals_plan),
-        "ward": Model("ward", "Lambert + Ward (fitted)",
-                      lambda s, lt: _fit_ward_model(normals, s, lt, **kw), predict_ward,
-                      _ward_plan),
+        "ptm": Model("ptm", terms, "ptm", "PTM RGB (fitted)",
+                     lambda s, lt: fit_ptm_rgb(s, lt, **kw), predict_ptm),
+        "ptm-lrgb": Model("ptm-lrgb", terms, "ptm_lrgb", "PTM LRGB (fitted)",
+                          lambda s, lt: fit_ptm_lrgb(s, lt, **kw), predict_ptm),
+        "hsh": Model("hsh", terms, f"hsh{terms}", f"HSH {terms} terms (fitted)",
+                     lambda s, lt: fit_hsh(s, lt, terms, **kw), predict_hsh),
+        "normals": Model("normals", terms, "normals", "Normals + albedo (photometric stereo)",
+                         normals, predict_normals),
+        "ward": Model("ward", terms, "ward", "Lambert + Ward (fitted)",
+                      lambda s, lt: _fit_ward_model(normals, s, lt, **kw), predict_ward),
     }
 
 
@@ -229,65 +200,81 @@ def psnr(predicted: Stack, actual: Stack) -> float:
 
 
 def leave_one_out(images: Images, lights: Lights, model: Model,
-                  every: int = HOLDOUT_EVERY) -> dict[str, Any]:
+                  every: int = HOLDOUT_EVERY, band_rows: int | None = None) -> dict[str, Any]:
     """Fit ``model`` without every ``every``-th light and return the PSNR on the held-out ones.
 
-    This is a second full fit (on a :class:`StackReader`, a second streamed pass over the
-    training images) plus one whole held-out image and its prediction in memory at a time
-    (``H·W·3`` float32 each): on huge images budget for those, or skip the report.
-
-    Returns ``{"heldOut": [indices], "psnr": [dB per held-out light], "meanPsnr", "medianPsnr"}``.
+    The report of :func:`~lanterna.tiler.fit_engine.fit_stream` (what ``lanterna fit``
+    stores) without writing the layer: one streamed pass, predictions from the float fit.
+    Returns ``{"heldOut": [indices], "psnr": [dB per held-out light], "meanPsnr",
+    "medianPsnr"}``.
     """
-    held = np.arange(0, images.shape[0], every)
-    train = np.setdiff1d(np.arange(images.shape[0]), held)
-    fitted = model.fit(images[train], lights[train])
-    scores = [psnr(model.predict(fitted, lights[i]), images[i]) for i in held]
-    return {"heldOut": [int(i) for i in held], "psnr": [round(s, 3) for s in scores],
-            "meanPsnr": round(float(np.mean(scores)), 3),
-            "medianPsnr": round(float(np.median(scores)), 3)}
+    with tempfile.TemporaryDirectory(prefix="lanterna-loo-") as scratch:
+        result = fit_stream(images, lights, [model.key], Path(scratch), terms=model.terms,
+                            band_rows=band_rows, holdout_every=every, layers=False)
+    return result.quality[model.key]
 
 
 def fit_collection(images_dir: Path, lp: Path, models: Sequence[str], out: Path, *,
                    terms: int = 9, name: str | None = None, label: str | None = None,
                    base_url: str = DEFAULT_BASE_URL, tile_size: int = 256, force: bool = False,
-                   band_rows: int | None = None,
-                   report: Callable[[str], None] = lambda _: None) -> dict[str, Any]:
+                   band_rows: int | None = None, tiff: bool = False,
+                   scratch: Path | None = None,
+                   report: Callable[[str], None] = lambda _: None,
+                   progress: Callable[[str, int], Progress] | None = None) -> dict[str, Any]:
     """Fit ``models`` to the collection and write them as the layers of dataset ``out``.
 
-    The images are streamed: a :class:`StackReader` checks their headers, then every fit
-    reads them in bands of ``band_rows`` rows (default: each fitter's own, 32–64), so the
-    input held in memory is ``O(N · band_rows · W)`` whatever the image height; the fitted
-    float coefficients of the whole image are kept until the global quantisation.
-    Everything is read and fitted before the dataset is written (atomically, by
-    :func:`build_dataset`), so bad input leaves nothing behind.  Returns the quality report
-    (also stored as ``quality`` in ``lanterna.json``).
+    One streamed pass (:func:`~lanterna.tiler.fit_engine.fit_stream`) reads the images in bands
+    of ``band_rows`` rows (default: as many as fit a 48 MB float band) and fits every model and
+    its leave-one-out twin; the planes are written to a scratch folder (``scratch``, default a
+    temporary folder beside ``out``, removed afterwards) and then tiled.  Memory is bounded by
+    the band whatever the image size; the scratch folder needs about ``4 · coefficients`` bytes
+    per pixel for PTM/HSH plus the 8-bit planes.  Everything is fitted before the dataset is
+    written (atomically, by :func:`build_dataset`), so bad input leaves nothing behind.
+    Returns the quality report (also stored as ``quality`` in ``lanterna.json``).
     """
     table = model_table(terms, band_rows)
     unknown = [m for m in models if m not in table]
     if unknown or not models:
         raise LanternaInputError(None, f"unknown model(s) {', '.join(unknown) or '(none)'}; "
                                  f"expected {', '.join(table)}")
+    keys = list(dict.fromkeys(models))
     files, lights = read_lp(lp, images_dir)
-    report(f"streaming {len(files)} images from {images_dir}")
     stack = StackReader(files)
+    report(f"streaming {len(files)} images of {stack.shape[2]}x{stack.shape[1]} from "
+           f"{images_dir}")
     source = f"{Path(images_dir).name} + {Path(lp).name}"
     held_every = HOLDOUT_EVERY if len(files) >= 2 * HOLDOUT_EVERY else 0
     quality: dict[str, Any] = {"protocol": f"fit without every {HOLDOUT_EVERY}th light "
                                "(from the first), PSNR of the prediction on those, RGB 0-1",
                                "models": {}}
-    plans = []
-    for key in dict.fromkeys(models):
-        model = table[key]
+    parent = Path(scratch) if scratch else Path(out).resolve().parent
+    parent.mkdir(parents=True, exist_ok=True)
+    with tempfile.TemporaryDirectory(prefix=".lanterna-fit-", dir=parent) as tmp:
         try:
-            if held_every:
-                q = leave_one_out(stack, lights, model, held_every)
+            result = fit_stream(stack, lights, keys, Path(tmp), terms=terms,
+                                band_rows=band_rows, holdout_every=held_every,
+                                progress=progress)
+        except ValueError as err:
+            raise LanternaInputError(lp, f"cannot fit {err}") from None
+        plans = []
+        for key in keys:
+            model = table[key]
+            if key in result.quality:
+                q = result.quality[key]
                 quality["models"][model.id] = q
                 report(f"{model.id}: leave-one-out PSNR mean {q['meanPsnr']:.2f} dB, "
                        f"median {q['medianPsnr']:.2f} dB over {len(q['heldOut'])} lights")
-            fitted = model.fit(stack, lights)
-        except ValueError as err:
-            raise LanternaInputError(lp, f"cannot fit {key}: {err}") from None
-        plans.append(model.plan(fitted, model.id, model.label, source))
-    build_dataset(plans, out, name=name or Path(out).name, label=label or Path(images_dir).name,
-                  base_url=base_url, tile_size=tile_size, force=force, quality=quality)
+            plans.append(_plan(result.layers[key], model.id, model.label, source))
+        build_dataset(plans, out, name=name or Path(out).name,
+                      label=label or Path(images_dir).name, base_url=base_url,
+                      tile_size=tile_size, force=force, quality=quality, tiff=tiff)
     return quality
+
+
+def _plan(layer: PlaneLayer, lid: str, label: str, source: str) -> LayerPlan:
+    """A dataset layer from fitted planes; fitted normal maps are stored once per dataset."""
+    share = {i: f"fitted:{Path(getattr(g.data, 'path', ''))}" for i, g in
+             enumerate(layer.groups) if layer.group_names[i] == "normals"}
+    return LayerPlan(lid, label, layer.width, layer.height, source,
+                     lambda ds: add_planes_layer(ds, layer, layer_id=lid, label=label,
+                                                 share=share))

@@ -9,6 +9,7 @@ tiles them, renders the manifest's preview image with the reference renderer
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from typing import Any
 
 import numpy as np
@@ -17,8 +18,12 @@ import pyvips
 
 from .dataset import DatasetWriter
 from .hsh_model import Hsh
-from .planes import PlaneGroup, PlaneLayer
+from .planes import PlaneData, PlaneGroup, PlaneLayer
 from .ptm_model import Ptm
+from .strip_tiff import BandImage, StripTiffWriter
+
+#: Rows rendered at once for the preview of a file-backed layer.
+PREVIEW_ROWS = 256
 
 
 def _to_bytes(display: npt.NDArray[np.floating]) -> npt.NDArray[np.uint8]:
@@ -37,13 +42,26 @@ def add_planes_layer(ds: DatasetWriter, layer: PlaneLayer, *, layer_id: str, lab
 
     planes = []
     for i, group in enumerate(layer.groups):
-        svc = ds.add_image(f"{layer_id}_{layer.group_names[i]}", np.ascontiguousarray(group.data),
-                           fmt="png", share_key=(share or {}).get(i))
+        data = group.data
+        image = data.vips() if isinstance(data, BandImage) else np.ascontiguousarray(data)
+        svc = ds.add_image(f"{layer_id}_{layer.group_names[i]}", image, fmt="png",
+                           share_key=(share or {}).get(i))
         planes.append({"service": svc, "format": "png", "channels": list(group.channels),
                        "scale": list(group.scale), "bias": list(group.bias)})
     block = {"layerType": layer.layer_type, **layer.fields(), "planes": planes}
-    preview = render(block, layer.channels(), (0.0, 0.0), "color")
-    ds.add_image(f"{layer_id}_preview", _to_bytes(preview), fmt="jpg")
+    banded = [g.data for g in layer.groups if isinstance(g.data, BandImage)]
+    if banded:
+        # file-backed (streamed) planes: render the preview a band of rows at a time
+        # (colour mode is per pixel, so this equals the whole-image render)
+        target = banded[0].path.with_name(f"{banded[0].path.stem}-preview.tif")
+        with StripTiffWriter(target, layer.width, layer.height, 3) as writer:
+            for y0 in range(0, layer.height, PREVIEW_ROWS):
+                channels = layer.channels(y0, y0 + PREVIEW_ROWS)
+                writer.write(_to_bytes(render(block, channels, (0.0, 0.0), "color")))
+            preview: npt.NDArray[np.uint8] | pyvips.Image = writer.close().vips()
+    else:
+        preview = _to_bytes(render(block, layer.channels(), (0.0, 0.0), "color"))
+    ds.add_image(f"{layer_id}_preview", preview, fmt="jpg")
     out = {"id": layer_id, "label": label, "body": f"{layer_id}_preview", **block}
     ds.add_layer(out)
     return out
@@ -56,26 +74,10 @@ def add_ptm_layer(ds: DatasetWriter, ptm: Ptm, *, layer_id: str = "ptm",
     The file's ``a = (byte − b)·s`` in 0–255 units becomes ``(t − b/255)·s`` with ``t`` in
     0–1 (docs/dataset-format.md).
     """
-    scale = [float(s) for s in ptm.scale]
-    bias = [float(b) / 255.0 for b in ptm.bias]
-    groups, names = [], []
-    if ptm.colorspace == "lrgb":
-        assert ptm.rgb is not None
-        for g in range(2):
-            k = slice(3 * g, 3 * g + 3)
-            groups.append(PlaneGroup([f"L{i}" for i in range(3 * g, 3 * g + 3)],
-                                     ptm.coefficients[..., k], scale[k], bias[k]))
-            names.append(f"c{g}")
-        groups.append(PlaneGroup(["R", "G", "B"], ptm.rgb, [1.0] * 3, [0.0] * 3))
-        names.append("color")
-    else:
-        for c, name in enumerate("RGB"):
-            for g in range(2):
-                k = slice(3 * g, 3 * g + 3)
-                groups.append(PlaneGroup([f"{name}{i}" for i in range(3 * g, 3 * g + 3)],
-                                         ptm.coefficients[:, :, c, k], scale[k], bias[k]))
-                names.append(f"{name.lower()}{g}")
-    planes = PlaneLayer("ptm", groups, colorspace=ptm.colorspace, group_names=names)
+    def coefficients(c: int | None, k: slice) -> PlaneData:
+        return ptm.coefficients[..., k] if c is None else ptm.coefficients[:, :, c, k]
+
+    planes = ptm_plane_layer(ptm.colorspace, ptm.scale, ptm.bias, coefficients, ptm.rgb)
     return add_planes_layer(ds, planes, layer_id=layer_id, label=label)
 
 
@@ -94,6 +96,38 @@ def hsh_plane_quantisation(hsh: Hsh) -> tuple[list[float], list[float]]:
             scales.append(float(s))
             biases.append(float(-b / s))
     return scales, biases
+
+
+def ptm_plane_layer(colorspace: str, scale: npt.ArrayLike, bias: npt.ArrayLike,
+                    coefficients: Callable[[int | None, slice], PlaneData],
+                    rgb: PlaneData | None) -> PlaneLayer:
+    """The plane groups of a PTM: ``c0, c1, color`` (lrgb) or ``r0, r1, g0, … b1`` (rgb).
+
+    ``scale``/``bias`` are the file's per-coefficient values (``a = (byte − b)·s`` in 0–255
+    units), stored as ``(t − b/255)·s`` with ``t`` in 0–1 (docs/dataset-format.md);
+    ``coefficients(c, k)`` returns the bytes of channel ``c`` (``None`` for lrgb), terms ``k``.
+    """
+    sc = [float(v) for v in np.asarray(scale).reshape(-1)]
+    bi = [float(v) / 255.0 for v in np.asarray(bias).reshape(-1)]
+    groups, names = [], []
+    if colorspace == "lrgb":
+        if rgb is None:
+            raise ValueError("an LRGB PTM needs its RGB plane")
+        for g in range(2):
+            k = slice(3 * g, 3 * g + 3)
+            groups.append(PlaneGroup([f"L{i}" for i in range(3 * g, 3 * g + 3)],
+                                     coefficients(None, k), sc[k], bi[k]))
+            names.append(f"c{g}")
+        groups.append(PlaneGroup(["R", "G", "B"], rgb, [1.0] * 3, [0.0] * 3))
+        names.append("color")
+    else:
+        for c, name in enumerate("RGB"):
+            for g in range(2):
+                k = slice(3 * g, 3 * g + 3)
+                groups.append(PlaneGroup([f"{name}{i}" for i in range(3 * g, 3 * g + 3)],
+                                         coefficients(c, k), sc[k], bi[k]))
+                names.append(f"{name.lower()}{g}")
+    return PlaneLayer("ptm", groups, colorspace=colorspace, group_names=names)
 
 
 def add_hsh_layer(ds: DatasetWriter, hsh: Hsh, *, layer_id: str = "hsh",

@@ -13,6 +13,10 @@ import numpy as np
 import numpy.typing as npt
 
 from .ptm_model import PTM_BASIS
+from .strip_tiff import BandImage
+
+#: A group's texels: in memory, or file-backed rows written by a streamed fit.
+PlaneData = npt.NDArray[np.uint8] | BandImage
 
 
 @dataclass(frozen=True)
@@ -20,7 +24,7 @@ class PlaneGroup:
     """One stored image: 1 or 3 channels, ``data`` uint8 ``(H, W, n)`` or ``(H, W)``."""
 
     channels: list[str]
-    data: npt.NDArray[np.uint8]
+    data: PlaneData
     scale: list[float]
     bias: list[float]
 
@@ -36,9 +40,10 @@ class PlaneGroup:
             raise ValueError(f"group {self.channels} data must be uint8 {want}, "
                              f"got {self.data.dtype} {shape}")
 
-    def values(self) -> npt.NDArray[np.float32]:
-        """Dequantised channel values ``(H, W, n)``."""
-        t = self.data.astype(np.float32).reshape(self.data.shape[:2] + (-1,)) / np.float32(255)
+    def values(self, y0: int = 0, y1: int | None = None) -> npt.NDArray[np.float32]:
+        """Dequantised channel values ``(y1 − y0, W, n)`` of rows ``y0:y1`` (default all)."""
+        rows = np.asarray(self.data[y0:y1 if y1 is not None else self.data.shape[0]])
+        t = rows.astype(np.float32).reshape(rows.shape[:2] + (-1,)) / np.float32(255)
         return (t - np.array(self.bias, np.float32)) * np.array(self.scale, np.float32)
 
 
@@ -83,11 +88,11 @@ class PlaneLayer:
     def width(self) -> int:
         return int(self.groups[0].data.shape[1])
 
-    def channels(self) -> dict[str, npt.NDArray[np.float32]]:
-        """Every channel's dequantised ``(H, W)`` values by name."""
+    def channels(self, y0: int = 0, y1: int | None = None) -> dict[str, npt.NDArray[np.float32]]:
+        """Every channel's dequantised ``(H, W)`` values (rows ``y0:y1``) by name."""
         out: dict[str, npt.NDArray[np.float32]] = {}
         for g in self.groups:
-            v = g.values()
+            v = g.values(y0, y1)
             for k, name in enumerate(g.channels):
                 out[name] = v[..., k]
         return out

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import json
 import tracemalloc
 from collections.abc import Callable
 from pathlib import Path
@@ -12,8 +13,9 @@ import pytest
 import pyvips
 
 from lanterna.tiler.errors import LanternaInputError
-from lanterna.tiler.fit import model_table
+from lanterna.tiler.fit import fit_collection, model_table
 from lanterna.tiler.layers import encode_normals
+from lanterna.tiler.lp import read_lp
 from lanterna.tiler.stack import StackReader, load_stack
 
 W, H, N = 40, 1000, 30
@@ -132,3 +134,53 @@ def test_reader_checks_sizes_from_headers(tmp_path: Path) -> None:
     pyvips.Image.black(W, H + 1, bands=3).write_to_file(str(files[2]))
     with pytest.raises(LanternaInputError, match=r"img_002\.png: is 40x1001, but img_000\.png"):
         StackReader(files)
+
+
+def _plane(ds: Path, image: str) -> npt.NDArray[np.uint8]:
+    img = pyvips.Image.new_from_file(str(ds / "iiif" / image / "full" / "max" / "0" /
+                                         "default.png"))
+    return np.asarray(img.numpy(), np.uint8).reshape(img.height, img.width, img.bands)
+
+
+def test_lanterna_fit_planes_equal_the_in_memory_fits(
+        collection: tuple[list[Path], npt.NDArray[np.float64]], tmp_path: Path) -> None:
+    """One streamed pass for five models (37-row bands): every stored plane, byte for byte."""
+    files, lights = collection
+    lp = files[0].parent / "lights.lp"
+    lp.write_text(f"{len(files)}\n" + "".join(
+        f"{f.name} {x:.9f} {y:.9f} {z:.9f}\n" for f, (x, y, z) in zip(files, lights, strict=True)))
+    lights = read_lp(lp, files[0].parent)[1]  # as parsed, to the last bit
+    ds = tmp_path / "ds"
+    fit_collection(files[0].parent, lp, ["ptm", "ptm-lrgb", "hsh", "normals", "ward"], ds,
+                   band_rows=BAND)
+    stack = load_stack(files)
+    table = model_table(9)
+    ptm = table["ptm"].fit(stack, lights)
+    for c, name in enumerate("rgb"):
+        for g in range(2):
+            assert np.array_equal(_plane(ds, f"ptm_{name}{g}"),
+                                  ptm.coefficients[:, :, c, 3 * g:3 * g + 3]), (name, g)
+    lrgb = table["ptm-lrgb"].fit(stack, lights)
+    assert np.array_equal(_plane(ds, "ptm_lrgb_c0"), lrgb.coefficients[..., :3])
+    assert np.array_equal(_plane(ds, "ptm_lrgb_c1"), lrgb.coefficients[..., 3:])
+    assert np.array_equal(_plane(ds, "ptm_lrgb_color"), lrgb.rgb)
+    hsh = table["hsh"].fit(stack, lights)
+    for t in range(9):
+        assert np.array_equal(_plane(ds, f"hsh9_t{t}"), hsh.coefficients[..., t]), t
+    ward = table["ward"].fit(stack, lights)
+    assert np.array_equal(_plane(ds, "normals_normals"), encode_normals(ward.normals))
+    for m in ("kd", "ks"):
+        assert np.array_equal(_plane(ds, f"ward_{m}"), getattr(ward, m)), m
+    assert np.array_equal(_plane(ds, "ward_gloss")[..., 0], ward.gloss)
+    albedo = table["normals"].fit(stack, lights).albedo
+    assert np.array_equal(_plane(ds, "normals_kd"),
+                          np.clip(np.round(albedo.astype(np.float64) * 255), 0, 255))
+    desc = json.loads((ds / "lanterna.json").read_text())
+    services = {layer["id"]: layer["service"] for layer in desc["layers"]}
+    stored = services["ptm"]["planes"][0]
+    assert stored["scale"] == [float(v) for v in ptm.scale[:3]]
+    assert stored["bias"] == [float(v) / 255 for v in ptm.bias[:3]]
+    # the normal map is stored once and referenced by both shape layers
+    assert (services["normals"]["planes"][0]["service"]["id"]
+            == services["ward"]["planes"][0]["service"]["id"])
+    assert not list(tmp_path.glob(".lanterna-fit-*")), "scratch folder left behind"

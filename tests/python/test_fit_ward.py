@@ -10,7 +10,7 @@ import numpy.typing as npt
 import pytest
 
 from lanterna.cli import main
-from lanterna.tiler import fit as fit_module
+from lanterna.tiler import fit_bands
 from lanterna.tiler.fit import leave_one_out, model_table, psnr
 from lanterna.tiler.ward_fit import GLOSS_LIMITS, alpha_grid, fit_ward, predict_ward, quantize_ward
 
@@ -121,16 +121,17 @@ def test_fallbacks_clamp_kd_and_drop_negative_ks() -> None:
 def test_cli_ward_shares_one_normal_map_with_normals(tmp_path: Path,
                                                       monkeypatch: pytest.MonkeyPatch) -> None:
     calls = []
-    real = fit_module.fit_normals
-    monkeypatch.setattr(fit_module, "fit_normals",
+    real = fit_bands.normals_band
+    monkeypatch.setattr(fit_bands, "normals_band",
                         lambda *a, **k: calls.append(1) or real(*a, **k))
     lights = _lights()
     lp = _write_collection(tmp_path / "shots", _render(_object(), lights), lights, depth=16)
     out = tmp_path / "ds"
     assert main(["fit", str(tmp_path / "shots"), "--lp", str(lp), "--model", "normals",
                  "--model", "ward", "-o", str(out)]) == 0
-    # normals: held-out + full; ward: held-out (its own training subset) + full (reused)
-    assert len(calls) == 3
+    # one pass, one band (24 rows): the normals are solved once for the layers and once for the
+    # leave-one-out fit, each shared by both models
+    assert len(calls) == 2
     desc = json.loads((out / "lanterna.json").read_text())
     layers = {layer["id"]: layer for layer in desc["layers"]}
     assert list(layers) == ["normals", "ward"]

@@ -1,0 +1,308 @@
+"""Fit every requested model in one streamed pass over a multi-light collection.
+
+One pass reads the images top to bottom in bands of rows (:class:`~lanterna.tiler.stack.
+StackReader`) and, per band, solves every model twice — on all lights (the layer) and without
+the held-out lights (the leave-one-out report, accumulated as squared errors on the held-out
+images of the same band) — so the images are decoded once whatever the number of models.
+
+Memory is bounded by the band, not the image: per-pixel encodings (normal maps, Ward maps, the
+LRGB colour plane) go straight to file-backed planes (:class:`~lanterna.tiler.strip_tiff.
+StripTiffWriter`); PTM/HSH coefficients need their global range before they can be quantised,
+so their floats are appended to a scratch file (4 bytes per coefficient per pixel on disk) with
+the running min/max, and a second, sequential pass over that file writes the 8-bit planes.
+The results are :class:`~lanterna.tiler.planes.PlaneLayer` s whose groups are those files.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable, Sequence
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any, BinaryIO
+
+import numpy as np
+import numpy.typing as npt
+
+from . import fit_bands as fb
+from .hsh_fit import hsh_design_matrix, hsh_quantisation, hsh_quantize
+from .layers import encode_normals, ptm_plane_layer
+from .planes import PlaneData, PlaneGroup, PlaneLayer
+from .progress import Progress
+from .ptm_fit import ptm_design_matrix, ptm_quantisation, ptm_quantize
+from .stack import StackReader
+from .strip_tiff import BandImage, StripTiffWriter
+from .ward_fit import GLOSS_LIMITS
+
+Images = npt.NDArray[np.float32] | StackReader
+Lights = npt.NDArray[np.float64]
+
+#: Bytes of input (N × rows × W × 3 float32) solved at once when the band height is automatic.
+BAND_BUDGET = 48 << 20
+#: Models the engine fits, by CLI name.
+MODEL_KEYS = ("ptm", "ptm-lrgb", "hsh", "normals", "ward")
+
+
+def auto_band_rows(n: int, width: int, budget: int = BAND_BUDGET) -> int:
+    """Rows per band so that the float input band ``(n, rows, width, 3)`` fits ``budget``."""
+    return max(1, min(256, budget // max(1, n * width * 12)))
+
+
+@dataclass
+class _Solver:
+    """The pseudo-inverses (or checks) of the requested models for one set of lights."""
+
+    lights: Lights
+    keys: Sequence[str]
+    terms: int
+    pinv: dict[str, npt.NDArray[np.float32]] = field(default_factory=dict)
+
+    def __post_init__(self) -> None:
+        n = len(self.lights)
+        if {"ptm", "ptm-lrgb"} & set(self.keys):
+            basis = ptm_design_matrix(self.lights)
+            if n < 6 or np.linalg.matrix_rank(basis) < 6:
+                key = next(k for k in self.keys if k.startswith("ptm"))
+                raise ValueError(f"{key}: the light directions do not determine the 6 PTM terms")
+            self.pinv["ptm-lrgb"] = np.linalg.pinv(basis).astype(np.float32)
+            self.pinv["ptm"] = (np.linalg.pinv(basis) * 255.0).astype(np.float32)
+        if "hsh" in self.keys:
+            hbasis = hsh_design_matrix(self.lights, self.terms)
+            if n < self.terms or np.linalg.matrix_rank(hbasis) < self.terms:
+                raise ValueError(f"hsh: the lights do not determine {self.terms} HSH terms")
+            self.pinv["hsh"] = np.linalg.pinv(hbasis.astype(np.float64)).astype(np.float32)
+        if {"normals", "ward"} & set(self.keys):
+            if n < 3 or np.linalg.matrix_rank(self.lights) < 3:
+                key = "normals" if "normals" in self.keys else "ward"
+                raise ValueError(f"{key}: photometric stereo needs at least 3 non-coplanar "
+                                 "lights")
+
+    def solve(self, band: npt.NDArray[np.float32]) -> dict[str, fb.Out]:
+        """Every requested model's float outputs for one band (all of this solver's lights)."""
+        out: dict[str, fb.Out] = {}
+        if "ptm" in self.keys:
+            out["ptm"] = fb.ptm_rgb_band(band, self.pinv["ptm"])
+        if "ptm-lrgb" in self.keys:
+            out["ptm-lrgb"] = fb.ptm_lrgb_band(band, self.pinv["ptm-lrgb"])
+        if "hsh" in self.keys:
+            out["hsh"] = fb.hsh_band(band, self.pinv["hsh"])
+        if {"normals", "ward"} & set(self.keys):
+            nrm = fb.normals_band(band, self.lights)
+            out["normals"] = nrm
+            if "ward" in self.keys:
+                normals = nrm["normals"].astype(np.float32)
+                out["ward"] = {**fb.ward_band(band, self.lights, normals), "normals": normals}
+        return out
+
+
+PREDICT: dict[str, Callable[[fb.Out, npt.NDArray[np.float64]], fb.Band]] = {
+    "ptm": fb.predict_ptm_band, "ptm-lrgb": fb.predict_ptm_band, "hsh": fb.predict_hsh_band,
+    "normals": fb.predict_normals_band, "ward": fb.predict_ward_band,
+}
+
+
+class _Spill:
+    """Float coefficients appended band by band to a scratch file, with their running range."""
+
+    def __init__(self, path: Path) -> None:
+        self.path = path
+        self.file: BinaryIO = open(path, "wb")  # noqa: SIM115 - closed in finish()
+        self.lo: npt.NDArray[np.float64] | None = None
+        self.hi: npt.NDArray[np.float64] | None = None
+        self.shapes: list[tuple[int, ...]] = []
+
+    def append(self, values: npt.NDArray[np.float32]) -> None:
+        axes = tuple(range(values.ndim - 1))
+        lo, hi = values.min(axis=axes), values.max(axis=axes)
+        if not (np.all(np.isfinite(lo)) and np.all(np.isfinite(hi))):
+            raise ValueError("the fit produced non-finite coefficients")
+        self.lo = lo if self.lo is None else np.minimum(self.lo, lo)
+        self.hi = hi if self.hi is None else np.maximum(self.hi, hi)
+        self.file.write(np.ascontiguousarray(values, np.float32).tobytes())
+        self.shapes.append(values.shape)
+
+    def bands(self) -> Any:
+        """Yield the bands back in order (the file is deleted after the last)."""
+        self.file.close()
+        with open(self.path, "rb") as f:
+            for shape in self.shapes:
+                yield np.fromfile(f, np.float32, math.prod(shape)).reshape(shape)
+        self.path.unlink()
+
+
+@dataclass
+class FitResult:
+    """The fitted layers (file-backed planes in the scratch folder) and the quality report."""
+
+    layers: dict[str, PlaneLayer]
+    quality: dict[str, dict[str, Any]]
+    band_rows: int
+
+
+def fit_stream(images: Images, lights: Lights, keys: Sequence[str], scratch: Path, *,
+               terms: int = 9, band_rows: int | None = None, holdout_every: int = 0,
+               layers: bool = True,
+               progress: Callable[[str, int], Progress] | None = None) -> FitResult:
+    """Fit the models ``keys`` (of :data:`MODEL_KEYS`) in one pass; planes go to ``scratch``.
+
+    ``holdout_every > 0`` also fits without every ``holdout_every``-th light (from the first)
+    and reports the PSNR of each model on those lights (``{"heldOut", "psnr", "meanPsnr",
+    "medianPsnr"}`` per model; predictions from the float coefficients, before 8-bit storage).
+    ``layers=False`` skips the layers (the report only).  ``progress(label, total)`` makes a
+    progress reporter per stage.
+
+    Raises
+    ------
+    ValueError
+        When the lights do not determine a model, or shapes disagree.
+    """
+    n, h, w, _ = images.shape
+    if lights.shape != (n, 3):
+        raise ValueError(f"{n} images but lights of shape {lights.shape}")
+    unknown = [k for k in keys if k not in MODEL_KEYS]
+    if unknown:
+        raise ValueError(f"unknown model(s) {unknown}")
+    rows = band_rows or auto_band_rows(n, w)
+    full = _Solver(lights, keys, terms)
+    held = np.arange(0, n, holdout_every) if holdout_every else np.zeros(0, np.intp)
+    train = np.setdiff1d(np.arange(n), held)
+    loo = _Solver(lights[train], keys, terms) if len(held) else None
+    sse = {k: np.zeros(len(held)) for k in keys}
+    sinks = _Sinks(scratch, w, h)
+    bar = progress("fitting " + ", ".join(keys), h) if progress else None
+    for y0 in range(0, h, rows):
+        band = np.asarray(images[:, y0:y0 + rows], np.float32)
+        if layers:
+            sinks.take(full.solve(band), keys)
+        if loo is not None:
+            outs = loo.solve(band[train])
+            for k in keys:
+                for j, i in enumerate(held):
+                    diff = PREDICT[k](outs[k], lights[i]).astype(np.float64) - band[i]
+                    sse[k][j] += float(np.vdot(diff, diff))
+        if bar:
+            bar.update(min(h, y0 + rows))
+    fitted = sinks.finish(keys, terms, progress) if layers else {}
+    quality = {}
+    for k in keys if len(held) else ():
+        scores = [10.0 * math.log10(h * w * 3 / s) if s > 0 else math.inf for s in sse[k]]
+        quality[k] = {"heldOut": [int(i) for i in held], "psnr": [round(s, 3) for s in scores],
+                      "meanPsnr": round(float(np.mean(scores)), 3),
+                      "medianPsnr": round(float(np.median(scores)), 3)}
+    return FitResult(fitted, quality, rows)
+
+
+class _Sinks:
+    """Where each band's outputs go: plane files, or a spill for the globally quantised ones."""
+
+    def __init__(self, scratch: Path, width: int, height: int) -> None:
+        self.scratch, self.width, self.height = Path(scratch), width, height
+        self.writers: dict[str, StripTiffWriter] = {}
+        self.spills: dict[str, _Spill] = {}
+
+    def _write(self, name: str, rows: npt.NDArray[np.uint8]) -> None:
+        if name not in self.writers:
+            bands = 3 if rows.ndim == 3 else 1
+            self.writers[name] = StripTiffWriter(self.scratch / f"{name}.tif", self.width,
+                                                 self.height, bands)
+        self.writers[name].write(rows)
+
+    def _spill(self, name: str, values: npt.NDArray[np.float32]) -> None:
+        if name not in self.spills:
+            self.spills[name] = _Spill(self.scratch / f"{name}.f32")
+        self.spills[name].append(values)
+
+    def take(self, outs: dict[str, fb.Out], keys: Sequence[str]) -> None:
+        for k in ("ptm", "ptm-lrgb", "hsh"):
+            if k in keys:
+                self._spill(k, outs[k]["coeffs"].astype(np.float32))
+        if "ptm-lrgb" in keys:
+            self._write("ptm-lrgb-color", outs["ptm-lrgb"]["rgb"].astype(np.uint8))
+        if {"normals", "ward"} & set(keys):
+            self._write("normals", encode_normals(outs["normals"]["normals"].astype(np.float32)))
+        if "normals" in keys:
+            self._write("albedo", _to8(outs["normals"]["albedo"]))
+        if "ward" in keys:
+            for m in ("kd", "ks", "gloss"):
+                self._write(f"ward-{m}", outs["ward"][m].astype(np.uint8))
+
+    def finish(self, keys: Sequence[str], terms: int,
+               progress: Callable[[str, int], Progress] | None) -> dict[str, PlaneLayer]:
+        files = {name: wr.close() for name, wr in self.writers.items()}
+        layers: dict[str, PlaneLayer] = {}
+        for k in ("ptm", "ptm-lrgb", "hsh"):
+            if k in keys:
+                layers[k] = self._quantise(k, terms, files, progress)
+        if "normals" in keys:
+            layers["normals"] = _svbrdf([("normals", files["normals"]), ("kd", files["albedo"])])
+        if "ward" in keys:
+            layers["ward"] = _svbrdf([("normals", files["normals"]), ("kd", files["ward-kd"]),
+                                      ("ks", files["ward-ks"]), ("gloss", files["ward-gloss"])])
+        return layers
+
+    def _quantise(self, key: str, terms: int, files: dict[str, BandImage],
+                  progress: Callable[[str, int], Progress] | None) -> PlaneLayer:
+        """Second pass over a spill: the 8-bit planes of a PTM or HSH layer."""
+        spill = self.spills[key]
+        assert spill.lo is not None and spill.hi is not None
+        scale: Any
+        bias: Any
+        if key == "hsh":
+            scale, bias = hsh_quantisation(spill.lo, spill.hi)
+            names = [f"t{k}" for k in range(terms)]
+        else:
+            scale, bias = ptm_quantisation(spill.lo, spill.hi)
+            names = (["c0", "c1"] if key == "ptm-lrgb" else
+                     [f"{c}{g}" for c in "rgb" for g in range(2)])
+        writers = {g: StripTiffWriter(self.scratch / f"{key}-{g}.tif", self.width, self.height,
+                                      3) for g in names}
+        bar = progress(f"quantising {key}", self.height) if progress else None
+        done = 0
+        for values in spill.bands():
+            if key == "hsh":
+                q = hsh_quantize(values, scale, bias)
+                for t, g in enumerate(names):
+                    writers[g].write(q[..., t])
+            else:
+                q = ptm_quantize(values, scale, bias)
+                for g in names:
+                    k = slice(3 * int(g[-1]), 3 * int(g[-1]) + 3)
+                    writers[g].write(q[..., k] if key == "ptm-lrgb" else q[:, :, "rgb".index(
+                        g[0]), k])
+            done += values.shape[0]
+            if bar:
+                bar.update(done)
+        planes = {g: wr.close() for g, wr in writers.items()}
+        if key == "hsh":
+            groups = [PlaneGroup([f"R{t}", f"G{t}", f"B{t}"], planes[f"t{t}"],
+                                 [float(scale[t])] * 3, [-float(bias[t]) / float(scale[t])] * 3)
+                      for t in range(terms)]
+            return PlaneLayer("hsh", groups, terms=terms, group_names=names)
+
+        def coefficients(c: int | None, k: slice) -> PlaneData:
+            g = k.start // 3
+            return planes[f"c{g}"] if c is None else planes[f"{'rgb'[c]}{g}"]
+
+        colorspace = "lrgb" if key == "ptm-lrgb" else "rgb"
+        return ptm_plane_layer(colorspace, scale, bias, coefficients,
+                               files.get("ptm-lrgb-color"))
+
+
+def _to8(values: npt.NDArray[np.generic]) -> npt.NDArray[np.uint8]:
+    out: npt.NDArray[np.uint8] = np.clip(np.round(np.asarray(values, np.float64) * 255.0), 0,
+                                         255).astype(np.uint8)
+    return out
+
+
+_SVBRDF = {"normals": (["NX", "NY", "NZ"], [2.0] * 3, [0.5] * 3),
+           "kd": (["KD_R", "KD_G", "KD_B"], [1.0] * 3, [0.0] * 3),
+           "ks": (["KS_R", "KS_G", "KS_B"], [1.0] * 3, [0.0] * 3),
+           "gloss": (["GLOSS"], [1.0], [0.0])}
+
+
+def _svbrdf(maps: list[tuple[str, BandImage]]) -> PlaneLayer:
+    """A shape + material layer from fitted maps (as :func:`~.layers.add_svbrdf_layer`)."""
+    groups = [PlaneGroup(_SVBRDF[name][0], data, _SVBRDF[name][1], _SVBRDF[name][2])
+              for name, data in maps]
+    return PlaneLayer("svbrdf", groups, group_names=[name for name, _ in maps],
+                      extra={"glossLimits": list(GLOSS_LIMITS), "inputColorSpace": "linear"})
