@@ -5,6 +5,11 @@ for level 0 and for the clients we support (see ``docs/dataset-format.md``, "Pyr
 ``sizes``, ``full/max`` in jpg (and png), ``preferredFormats``/``extraFormats`` for PNG trees,
 ``maxWidth``/``maxHeight`` past the JPEG limit, and every tile URL OpenSeadragon or the spec's
 algorithm asks for, including single-tile images.
+
+Cost: besides dzsave's pass, one full-resolution encode (``full/max``, which level 0 requires),
+run in a thread *while* dzsave runs (dzsave leaves a core partly idle); the ``sizes`` entries
+are joined from the level's tiles dzsave wrote, not resized from the full image again. See
+"Tiling" in ``docs/benchmarks.md``.
 """
 
 from __future__ import annotations
@@ -13,6 +18,8 @@ import json
 import os
 import shutil
 import tempfile
+import threading
+from collections.abc import Callable
 from pathlib import Path
 from typing import Any
 
@@ -74,21 +81,66 @@ def write_pyramid(
             save["suffix"] = ".png[compression=3]"
         else:
             save["Q"] = JPEG_QUALITY
-        image.dzsave(str(scratch / out_dir.name), id="http://lanterna.invalid", **save)
+        full_max = _FullMax(image, scratch, fmt)
+        full_max.start()
+        try:
+            image.dzsave(str(scratch / out_dir.name), id="http://lanterna.invalid", **save)
+        finally:
+            full_max.join()
+        full_max.raise_error()
         (scratch / out_dir.name).rename(out_dir)
+        full_max.move_into(out_dir)
     finally:
         shutil.rmtree(scratch, ignore_errors=True)
 
     factors = geo.scale_factors(width, height, tile_size)
     _complete_tiles(image, out_dir, fmt, tile_size, factors)
     info = _info_json(width, height, service_id, fmt, tile_size, factors)
-    for size in info.get("sizes", []):
-        sw, sh = size["width"], size["height"]
-        _ensure(image, out_dir, fmt, geo.TileRequest(0, 0, width, height, sw, sh),
-                f"full/{sw},{sh}")
-    _write_full_max(image, out_dir, fmt)
+    for factor in factors:
+        sw, sh = geo.level_size(width, height, factor)
+        if max(sw, sh) <= SIZES_LIMIT:
+            _ensure(image, out_dir, fmt, geo.TileRequest(0, 0, width, height, sw, sh),
+                    f"full/{sw},{sh}", _level_from_tiles(out_dir, fmt, width, height,
+                                                         tile_size, factor))
     (out_dir / "info.json").write_text(json.dumps(info, indent=2))
     return info
+
+
+class _FullMax(threading.Thread):
+    """Write ``full/max`` (jpg, and png for PNG trees) into a scratch folder, in a thread.
+
+    Level 0 requires ``full/max/0/default.jpg``; at full resolution it is one more encode of the
+    whole image. dzsave keeps the cores only partly busy, so running this alongside it costs
+    little wall time. Errors are re-raised by :meth:`raise_error`.
+    """
+
+    def __init__(self, image: pyvips.Image, scratch: Path, fmt: str) -> None:
+        super().__init__(name="lanterna-full-max", daemon=True)
+        self._image = image
+        self._files = {ext: scratch / f"full-max.{ext}" for ext in sorted({"jpg", fmt})}
+        self._error: Exception | None = None
+
+    def run(self) -> None:
+        try:
+            w, h = geo.constrained_max(self._image.width, self._image.height)
+            req = geo.TileRequest(0, 0, self._image.width, self._image.height, w, h)
+            for target in self._files.values():
+                _render(self._image, req, target)
+        except Exception as err:  # handed to the caller's thread by raise_error
+            self._error = err
+
+    def raise_error(self) -> None:
+        """Re-raise, in the calling thread, the error the thread stopped on (if any)."""
+        if self._error is not None:
+            raise self._error
+
+    def move_into(self, out_dir: Path) -> None:
+        """Put the files at ``full/max/0/default.*`` (unless dzsave wrote them already)."""
+        for ext, source in self._files.items():
+            target = _tile_file(out_dir, "full/max", ext)
+            if not target.exists():
+                target.parent.mkdir(parents=True, exist_ok=True)
+                source.rename(target)
 
 
 def _info_json(width: int, height: int, service_id: str, fmt: str, tile_size: int,
@@ -133,8 +185,13 @@ def _complete_tiles(image: pyvips.Image, out_dir: Path, fmt: str, tile_size: int
 
 
 def _ensure(image: pyvips.Image, out_dir: Path, fmt: str, req: geo.TileRequest,
-            path: str | None = None) -> None:
-    """Make sure the request ``req`` (at URL ``path``, else its canonical path) has a file."""
+            path: str | None = None,
+            source: Callable[[], pyvips.Image | None] | None = None) -> None:
+    """Make sure the request ``req`` (at URL ``path``, else its canonical path) has a file.
+
+    An existing file for the same pixels is hard-linked; otherwise ``source()`` (if given and
+    not None) is saved, else the request is rendered from ``image``.
+    """
     width, height = image.width, image.height
     path = path or geo.canonical_path(width, height, req)
     target = _tile_file(out_dir, path, fmt)
@@ -142,11 +199,35 @@ def _ensure(image: pyvips.Image, out_dir: Path, fmt: str, req: geo.TileRequest,
         return
     target.parent.mkdir(parents=True, exist_ok=True)
     for alias in _aliases(width, height, req):
-        source = _tile_file(out_dir, alias, fmt)
-        if source.exists():
-            os.link(source, target)
+        existing = _tile_file(out_dir, alias, fmt)
+        if existing.exists():
+            os.link(existing, target)
             return
-    _render(image, req, target)
+    made = source() if source is not None else None
+    if made is not None and (made.width, made.height) == (req.sw, req.sh):
+        _save(made, target)
+    else:
+        _render(image, req, target)
+
+
+def _level_from_tiles(out_dir: Path, fmt: str, width: int, height: int, tile_size: int,
+                      factor: int) -> Callable[[], pyvips.Image | None]:
+    """Return a maker of the whole level ``factor`` joined from its tile files (None at 1).
+
+    The level's tiles (the spec's grid, all present after :func:`_complete_tiles`) are exactly
+    the level's pixels, so a ``sizes`` entry costs decoding them, not resizing the full image.
+    """
+    def make() -> pyvips.Image | None:
+        if factor == 1:  # the full image: render it from the source, not from re-decoded tiles
+            return None
+        tiles = list(geo.spec_tiles(width, height, tile_size, factor))
+        across = -(-width // (tile_size * factor))
+        images = [pyvips.Image.new_from_file(
+            str(_tile_file(out_dir, geo.canonical_path(width, height, t), fmt)),
+            access="sequential") for t in tiles]
+        return images[0] if len(images) == 1 else pyvips.Image.arrayjoin(images, across=across)
+
+    return make
 
 
 def _aliases(width: int, height: int, req: geo.TileRequest) -> list[str]:
@@ -171,11 +252,3 @@ def _save(image: pyvips.Image, target: Path) -> None:
         if image.hasalpha():
             image = image.flatten()
         image.jpegsave(str(target), Q=JPEG_QUALITY)
-
-
-def _write_full_max(image: pyvips.Image, out_dir: Path, fmt: str) -> None:
-    """Write ``full/max/0/default.jpg`` (required at level 0) and ``.png`` for PNG trees."""
-    w, h = geo.constrained_max(image.width, image.height)
-    for ext in {"jpg", fmt}:
-        _ensure(image, out_dir, ext, geo.TileRequest(0, 0, image.width, image.height, w, h),
-                "full/max")
