@@ -1,21 +1,27 @@
 """The Flask application: static IIIF trees, manifests and the viewer, for local deployment.
 
-``create_app(config)`` is the factory; routes stay thin. Files are only ever served through
-``send_from_directory`` (which refuses paths escaping the folder), and JSON documents get the
-dataset's recorded ``baseUrl`` rewritten to the URL of the request, so every IIIF ``id``
-matches the URL it was fetched from.
+``create_app(config)`` is the factory; routes stay thin. Files are only ever served after
+:func:`~lanterna.server.safe_path.contained_file` has resolved them (symlinks included) inside
+the data root, and JSON documents get the dataset's recorded ``baseUrl`` rewritten to the URL of
+the request, so every IIIF ``id`` matches the URL it was fetched from. The level-1 image server
+over pyramidal TIFFs lives in :mod:`lanterna.server.image_api` (``/iiif/3/…``); errors are short
+plain text (:mod:`lanterna.server.errors`).
 """
 
 from __future__ import annotations
 
 import html
 import json
+from datetime import UTC, datetime
 from pathlib import Path
 from typing import Any
 
 from flask import Flask, Response, abort, redirect, request, send_from_directory
-from werkzeug.security import safe_join
 from werkzeug.wrappers import Response as BaseResponse
+
+from . import image_api
+from .errors import register_error_handlers
+from .safe_path import contained_dir, contained_file, raw_path_is_safe
 
 IMAGE_CONTEXT = "http://iiif.io/api/image/3/context.json"
 PRESENTATION_CONTEXT = "http://iiif.io/api/presentation/3/context.json"
@@ -27,7 +33,8 @@ def create_app(config: dict[str, Any] | None = None) -> Flask:
     """Create the app.
 
     Config keys: ``DATA_ROOT`` (folder of datasets, required), ``VIEWER_DIR`` (the built viewer
-    page, default ``plugin/dist/viewer`` of this checkout).
+    page, default ``plugin/dist/viewer`` of this checkout), and the image server's ``IIIF_*``
+    limits (:data:`lanterna.server.image_api.DEFAULTS`, docs/serving.md).
     """
     app = Flask(__name__)
     app.config["VIEWER_DIR"] = str(REPO_VIEWER)
@@ -36,6 +43,14 @@ def create_app(config: dict[str, Any] | None = None) -> Flask:
         raise ValueError("create_app needs DATA_ROOT")
     root = Path(app.config["DATA_ROOT"]).resolve()
     app.config["DATA_ROOT"] = str(root)
+    register_error_handlers(app)
+    image_api.init_app(app)
+
+    @app.before_request
+    def refuse_hidden_separators() -> None:
+        # %2F, %5C or %00 in the raw path would reach routing decoded: refuse them outright.
+        if not raw_path_is_safe(request.environ):
+            abort(404)
 
     @app.after_request
     def cors(resp: Response) -> Response:
@@ -57,26 +72,25 @@ def create_app(config: dict[str, Any] | None = None) -> Flask:
     @app.get("/datasets/<path:path>")
     def datasets(path: str) -> Response | BaseResponse:
         parts = path.strip("/").split("/")
-        full = safe_join(str(root), path)
-        if full is None:
-            abort(404)
-        target = Path(full)
-        if target.is_dir():
+        folder = contained_dir(root, path.rstrip("/"))
+        if folder is not None:
             # An image service's base URI redirects to its info.json (IIIF baseUriRedirect).
-            if len(parts) == 3 and parts[1] == "iiif" and (target / "info.json").is_file():
+            if len(parts) == 3 and parts[1] == "iiif" and (folder / "info.json").is_file():
                 return redirect(f"{request.base_url.rstrip('/')}/info.json", code=303)
-            abort(404)
-        if not target.is_file() or target.suffix.lower() not in _MEDIA:
+            abort(404)  # no directory listings
+        target = contained_file(root, path)
+        if target is None or Path(path).suffix.lower() not in _MEDIA:
             abort(404)
         if target.suffix.lower() == ".json":
             return _json_response(root, parts[0], target)
-        return send_from_directory(root, path, mimetype=_MEDIA[target.suffix.lower()],
-                                   max_age=3600)
+        # ETag (mtime-size-hash), Last-Modified and 304s come from send_file (conditional=True).
+        return send_from_directory(root, str(target.relative_to(root)),
+                                   mimetype=_MEDIA[target.suffix.lower()], max_age=3600)
 
     return app
 
 
-def _json_response(root: Path, dataset: str, target: Path) -> Response:
+def _json_response(root: Path, dataset: str, target: Path) -> BaseResponse:
     """Serve a JSON document with the dataset's base URL rewritten to the request's."""
     text = target.read_text()
     recorded = _recorded_base(root / dataset)
@@ -90,7 +104,11 @@ def _json_response(root: Path, dataset: str, target: Path) -> Response:
         mimetype = "application/json"
     resp = Response(text, mimetype=mimetype)
     resp.headers["Content-Type"] = mimetype
-    return resp
+    resp.last_modified = datetime.fromtimestamp(int(target.stat().st_mtime), tz=UTC)
+    resp.cache_control.max_age = 60
+    resp.vary.add("Accept")
+    resp.add_etag()  # from the body, which depends on the request URL and Accept
+    return resp.make_conditional(request)
 
 
 def _recorded_base(dataset_dir: Path) -> str | None:
