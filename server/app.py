@@ -37,6 +37,7 @@ def create_app(config: dict[str, Any] | None = None) -> Flask:
     limits (:data:`lanterna.server.image_api.DEFAULTS`, docs/serving.md).
     """
     app = Flask(__name__)
+    app.url_map.merge_slashes = False  # "//x" is a bad path (404), not a redirect to "/x"
     app.config["VIEWER_DIR"] = str(REPO_VIEWER)
     app.config.update(config or {})
     if "DATA_ROOT" not in app.config:

@@ -122,3 +122,28 @@ def test_every_tile_url_openseadragon_requests_is_served(root: Path, client: Fla
         for path in paths:
             with client.head(f"/datasets/obj/iiif/{image}/{path}/0/default.{fmt}") as resp:
                 assert resp.status_code == 200, (image, path)
+
+
+def test_static_tiles_are_cacheable_and_conditional(client: FlaskClient) -> None:
+    # send_from_directory gives a strong ETag, Last-Modified and max-age, and answers 304.
+    url = "/datasets/obj/iiif/ptm_c0/0,0,256,200/256,200/0/default.png"
+    with client.get(url) as first:
+        etag, modified = first.headers["ETag"], first.headers["Last-Modified"]
+        assert etag.startswith('"') and first.headers["Cache-Control"] == "public, max-age=3600"
+    with client.get(url, headers={"If-None-Match": etag}) as again:
+        assert again.status_code == 304 and again.data == b""
+    with client.get(url, headers={"If-Modified-Since": modified}) as since:
+        assert since.status_code == 304
+    with client.get(url, headers={"If-None-Match": '"nope"'}) as other:
+        assert other.status_code == 200
+
+
+def test_json_documents_are_conditional_per_url(client: FlaskClient) -> None:
+    url = "/datasets/obj/iiif/ptm_c0/info.json"
+    first = client.get(url)
+    assert first.headers["Last-Modified"] and first.headers["ETag"]
+    assert client.get(url, headers={"If-None-Match": first.headers["ETag"]}).status_code == 304
+    # The body depends on the host (rewritten ids), so the ETag does too.
+    other = client.get(url, base_url="http://example.net")
+    assert other.get_json()["id"].startswith("http://example.net/")
+    assert other.headers["ETag"] != first.headers["ETag"]
