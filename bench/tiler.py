@@ -13,7 +13,8 @@ with ``os.wait4``):
     ``write_pyramid``, and of bare dzsave for comparison.
 
 Diagnostic modes: ``--no-full-max`` also times ``write_pyramid`` with its ``full/max`` encode
-stubbed out (to see what that costs), ``--cli`` also times Debian's ``vips dzsave`` command (a
+stubbed out (to see what that costs), ``--before FILE`` also times another ``pyramid.py`` (an
+older commit's, to compare), ``--cli`` also times Debian's ``vips dzsave`` command (a
 different libvips version, reading the file itself).
 
 Run::
@@ -80,6 +81,15 @@ def _child(mode: str, src: Path, out: Path, fmt: str, tile_size: int, source: st
             pyramid._FullMax.run = lambda self: None
             pyramid._FullMax.move_into = lambda self, out_dir: None
         pyramid.write_pyramid(image, out, SERVICE_ID, fmt=fmt, tile_size=tile_size)
+    elif mode == "pyramid-before":  # another write_pyramid, e.g. an older commit's file
+        import importlib.util
+
+        spec = importlib.util.spec_from_file_location("lanterna.tiler._pyramid_before",
+                                                      os.environ["LANTERNA_BENCH_BEFORE"])
+        assert spec is not None and spec.loader is not None
+        before = importlib.util.module_from_spec(spec)
+        spec.loader.exec_module(before)
+        before.write_pyramid(image, out, SERVICE_ID, fmt=fmt, tile_size=tile_size)
     elif mode == "dzsave":
         save: dict[str, Any] = {"layout": "iiif3", "tile_size": tile_size, "overlap": 0}
         if fmt == "png":
@@ -150,7 +160,10 @@ def throughput(args: argparse.Namespace) -> dict[str, Any]:
     made = make_source(src, args.size)
     print(f"source {args.size}² written in {made:.1f} s ({src.stat().st_size / 1e6:.0f} MB)")
     modes = ["pyramid", "dzsave"] + (["pyramid-no-full-max"] if args.no_full_max else []) + (
+        ["pyramid-before"] if args.before else []) + (
         ["vips-cli"] if args.cli and shutil.which("vips") else [])
+    if args.before:
+        os.environ["LANTERNA_BENCH_BEFORE"] = str(args.before.resolve())
     runs: list[dict[str, Any]] = []
     for fmt in args.fmt.split(","):
         for rnd in range(args.rounds):
@@ -165,12 +178,15 @@ def throughput(args: argparse.Namespace) -> dict[str, Any]:
         mpx = args.size * args.size / 1e6
         summary[fmt] = {m: {"median_seconds": s, "mpx_per_s": mpx / s} for m, s in med.items()}
         summary[fmt]["pyramid_vs_dzsave"] = med["dzsave"] / med["pyramid"]
+        # throughput relative to bare dzsave (time of dzsave / time of the mode), every mode
+        summary[fmt]["vs_dzsave"] = {m: med["dzsave"] / s for m, s in med.items()}
         for m in modes:
             summary[fmt][m]["median_max_rss_mb"] = statistics.median(
                 r["max_rss_mb"] or 0 for r in runs if r["mode"] == m and r["fmt"] == fmt)
             summary[fmt][m]["files"] = next(r["files"] for r in runs
                                             if r["mode"] == m and r["fmt"] == fmt)
-        print(f"{fmt}: write_pyramid / dzsave throughput = {summary[fmt]['pyramid_vs_dzsave']:.3f}")
+        print(f"{fmt}: throughput / dzsave's: " + ", ".join(
+            f"{m} {r:.3f}" for m, r in summary[fmt]["vs_dzsave"].items()))
     return {"size": args.size, "tile_size": args.tile_size, "rounds": args.rounds,
             "source": args.source,
             "source_seconds": made, "summary": summary, "runs": runs}
@@ -205,6 +221,8 @@ def main() -> None:
                    help="throughput: tile a decoded in-memory image (default) or the file")
     p.add_argument("--no-full-max", action="store_true",
                    help="also time write_pyramid without its full/max encode (diagnostic)")
+    p.add_argument("--before", type=Path,
+                   help="also time this pyramid.py (e.g. `git show REV:tiler/pyramid.py`)")
     p.add_argument("--cli", action="store_true", help="also time the `vips` command line")
     p.add_argument("--json", type=Path, help="write the results here")
     p.add_argument("--keep", action="store_true")
