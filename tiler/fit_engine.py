@@ -30,6 +30,7 @@ from .layers import encode_normals, ptm_plane_layer
 from .planes import PlaneData, PlaneGroup, PlaneLayer
 from .progress import Progress
 from .ptm_fit import ptm_design_matrix, ptm_quantisation, ptm_quantize
+from .render.shading import linear_to_srgb, srgb_to_linear
 from .stack import StackReader
 from .strip_tiff import BandImage, StripTiffWriter
 from .ward_fit import GLOSS_LIMITS
@@ -55,6 +56,7 @@ class _Solver:
     lights: Lights
     keys: Sequence[str]
     terms: int
+    linear: bool = False
     pinv: dict[str, npt.NDArray[np.float32]] = field(default_factory=dict)
 
     def __post_init__(self) -> None:
@@ -87,11 +89,13 @@ class _Solver:
         if "hsh" in self.keys:
             out["hsh"] = fb.hsh_band(band, self.pinv["hsh"])
         if {"normals", "ward"} & set(self.keys):
-            nrm = fb.normals_band(band, self.lights)
+            physical = srgb_to_linear(band) if self.linear else band
+            nrm = fb.normals_band(physical, self.lights)
             out["normals"] = nrm
             if "ward" in self.keys:
                 normals = nrm["normals"].astype(np.float32)
-                out["ward"] = {**fb.ward_band(band, self.lights, normals), "normals": normals}
+                out["ward"] = {**fb.ward_band(physical, self.lights, normals),
+                               "normals": normals}
         return out
 
 
@@ -141,13 +145,18 @@ class FitResult:
 
 def fit_stream(images: Images, lights: Lights, keys: Sequence[str], scratch: Path, *,
                terms: int = 9, band_rows: int | None = None, holdout_every: int = 0,
-               layers: bool = True,
+               linear: bool = False, layers: bool = True,
                progress: Callable[[str, int], Progress] | None = None) -> FitResult:
     """Fit the models ``keys`` (of :data:`MODEL_KEYS`) in one pass; planes go to ``scratch``.
 
     ``holdout_every > 0`` also fits without every ``holdout_every``-th light (from the first)
     and reports the PSNR of each model on those lights (``{"heldOut", "psnr", "meanPsnr",
     "medianPsnr"}`` per model; predictions from the float coefficients, before 8-bit storage).
+    The photometric models (``normals``, ``ward``) fit the values as stored (``linear=False``:
+    their layers say ``inputColorSpace: "display"``, shaded as they are) or decoded from sRGB to
+    linear light first (``linear=True``: ``"linear"`` layers, encoded for display by the
+    viewer; their report compares the display encoding of the prediction).  PTM and HSH always
+    fit the stored values, which the viewer shows as they are.
     ``layers=False`` skips the layers (the report only).  ``progress(label, total)`` makes a
     progress reporter per stage.
 
@@ -163,10 +172,10 @@ def fit_stream(images: Images, lights: Lights, keys: Sequence[str], scratch: Pat
     if unknown:
         raise ValueError(f"unknown model(s) {unknown}")
     rows = band_rows or auto_band_rows(n, w)
-    full = _Solver(lights, keys, terms)
+    full = _Solver(lights, keys, terms, linear)
     held = np.arange(0, n, holdout_every) if holdout_every else np.zeros(0, np.intp)
     train = np.setdiff1d(np.arange(n), held)
-    loo = _Solver(lights[train], keys, terms) if len(held) else None
+    loo = _Solver(lights[train], keys, terms, linear) if len(held) else None
     sse = {k: np.zeros(len(held)) for k in keys}
     sinks = _Sinks(scratch, w, h)
     bar = progress("fitting " + ", ".join(keys), h) if progress else None
@@ -178,11 +187,15 @@ def fit_stream(images: Images, lights: Lights, keys: Sequence[str], scratch: Pat
             outs = loo.solve(band[train])
             for k in keys:
                 for j, i in enumerate(held):
-                    diff = PREDICT[k](outs[k], lights[i]).astype(np.float64) - band[i]
+                    pred = PREDICT[k](outs[k], lights[i])
+                    if linear and k in ("normals", "ward"):
+                        pred = linear_to_srgb(pred)
+                    diff = pred.astype(np.float64) - band[i]
                     sse[k][j] += float(np.vdot(diff, diff))
         if bar:
             bar.update(min(h, y0 + rows))
-    fitted = sinks.finish(keys, terms, progress) if layers else {}
+    space = "linear" if linear else "display"
+    fitted = sinks.finish(keys, terms, space, progress) if layers else {}
     quality = {}
     for k in keys if len(held) else ():
         scores = [10.0 * math.log10(h * w * 3 / s) if s > 0 else math.inf for s in sse[k]]
@@ -226,7 +239,7 @@ class _Sinks:
             for m in ("kd", "ks", "gloss"):
                 self._write(f"ward-{m}", outs["ward"][m].astype(np.uint8))
 
-    def finish(self, keys: Sequence[str], terms: int,
+    def finish(self, keys: Sequence[str], terms: int, space: str,
                progress: Callable[[str, int], Progress] | None) -> dict[str, PlaneLayer]:
         files = {name: wr.close() for name, wr in self.writers.items()}
         layers: dict[str, PlaneLayer] = {}
@@ -234,10 +247,12 @@ class _Sinks:
             if k in keys:
                 layers[k] = self._quantise(k, terms, files, progress)
         if "normals" in keys:
-            layers["normals"] = _svbrdf([("normals", files["normals"]), ("kd", files["albedo"])])
+            layers["normals"] = _svbrdf([("normals", files["normals"]), ("kd", files["albedo"])],
+                                        space)
         if "ward" in keys:
             layers["ward"] = _svbrdf([("normals", files["normals"]), ("kd", files["ward-kd"]),
-                                      ("ks", files["ward-ks"]), ("gloss", files["ward-gloss"])])
+                                      ("ks", files["ward-ks"]), ("gloss", files["ward-gloss"])],
+                                     space)
         return layers
 
     def _quantise(self, key: str, terms: int, files: dict[str, BandImage],
@@ -300,9 +315,9 @@ _SVBRDF = {"normals": (["NX", "NY", "NZ"], [2.0] * 3, [0.5] * 3),
            "gloss": (["GLOSS"], [1.0], [0.0])}
 
 
-def _svbrdf(maps: list[tuple[str, BandImage]]) -> PlaneLayer:
+def _svbrdf(maps: list[tuple[str, BandImage]], space: str) -> PlaneLayer:
     """A shape + material layer from fitted maps (as :func:`~.layers.add_svbrdf_layer`)."""
     groups = [PlaneGroup(_SVBRDF[name][0], data, _SVBRDF[name][1], _SVBRDF[name][2])
               for name, data in maps]
     return PlaneLayer("svbrdf", groups, group_names=[name for name, _ in maps],
-                      extra={"glossLimits": list(GLOSS_LIMITS), "inputColorSpace": "linear"})
+                      extra={"glossLimits": list(GLOSS_LIMITS), "inputColorSpace": space})

@@ -184,8 +184,9 @@ def add_svbrdf_layer(
         Optional map name → share key (e.g. the normal map's resolved path): maps with the same key
         across layers are stored once.
     """
-    if input_colorspace not in ("linear", "srgb"):
-        raise ValueError(f"inputColorSpace must be linear or srgb, not {input_colorspace!r}")
+    if input_colorspace not in ("linear", "srgb", "display"):
+        raise ValueError("inputColorSpace must be linear, srgb or display, not "
+                         f"{input_colorspace!r}")
     lo, hi = (float(v) for v in gloss_limits)
     if not 0.0 < lo <= hi:
         raise ValueError(f"glossLimits must satisfy 0 < min <= max, got {gloss_limits}")

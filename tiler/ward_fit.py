@@ -11,11 +11,12 @@ For a fixed α, ``I`` is linear in (kd, ks) per channel, so each α of a log-spa
 2×2 solve per pixel shared by the three channels (rti-formats.md §4.3); the α with the smallest
 SSE is kept.
 
-The stack values (0–1, as stored) are taken as the linear radiance ``I``, like the PTM/HSH fits
-and the 29.0 dB baseline of rti-formats.md; kd/ks are written ``inputColorSpace: "linear"``.
-:func:`predict_ward` returns ``clamp01(I)`` in those units, the value the viewer computes before
-its final ``linearToSrgb`` display encoding.  Decoding the (sRGB JPEG) stack to linear first was
-measured and fits real data worse (Löwenkopf 26.8 dB vs 29.3 dB).  See ``docs/fitting.md``.
+By default the stack values (0–1, as stored) are taken as ``I``, like the PTM/HSH fits and the
+29.0 dB baseline of rti-formats.md, and kd/ks are written ``inputColorSpace: "display"``, which the
+viewer shades as they are: :func:`predict_ward` returns ``clamp01(I)``, exactly what it shows.
+``lanterna fit --fit-space linear`` decodes the stack to linear light first and writes
+``"linear"`` maps (measured on the sRGB JPEG Löwenkopf: 26.8 dB vs 29.3 dB).  See
+``docs/fitting.md``.
 """
 
 from __future__ import annotations

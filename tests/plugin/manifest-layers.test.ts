@@ -109,6 +109,8 @@ describe('relight service errors for the new types', () => {
     expect(() => parseRelightService(with_([plane('g', ['GLOSS'])], { glossLimits: [0, 0.1] }))).toThrow(/glossLimits/);
     expect(() => parseRelightService(with_([plane('g', ['GLOSS'])], { inputColorSpace: 'rec709' })))
       .toThrow(RelightServiceError);
+    const display = parseRelightService(with_([plane('g', ['GLOSS'])], { inputColorSpace: 'display' }));
+    expect(display.inputColorSpace).toBe('display');
   });
 
   it('rejects scale/bias that do not match the channel count, and 2-channel groups', () => {

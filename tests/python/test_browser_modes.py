@@ -137,6 +137,11 @@ def build(out: Path) -> list[dict[str, Any]]:
         add_svbrdf_layer(ds, normals=n, kd=to_bytes(linear_to_srgb(kd)), ks=to_bytes(
             linear_to_srgb(ks)), gloss=gloss, input_colorspace="srgb", share=share,
             layer_id="sv_srgb")
+        add_svbrdf_layer(ds, normals=n, kd=to_bytes(kd), ks=to_bytes(ks), gloss=gloss,
+                         gloss_limits=(0.05, 0.45), input_colorspace="display", share=share,
+                         layer_id="sv_display")
+        add_svbrdf_layer(ds, kd=to_bytes(kd), input_colorspace="display",
+                         layer_id="sv_display_image")
         add_svbrdf_layer(ds, normals=n, share=share, layer_id="sv_geometry")
         add_svbrdf_layer(ds, kd=to_bytes(kd), layer_id="sv_image")
         add_image_layer(ds, vips_from_array(to_bytes(smooth(rng, 0.1, 0.9, (3,)))),
@@ -225,6 +230,8 @@ LAYER_MODES = [(lid, m) for lid, kind in [
     ("hsh16", {"layerType": "hsh"}),
     ("sv_linear", {"layerType": "svbrdf", "planes": [{"channels": ["NX"]}]}),
     ("sv_srgb", {"layerType": "svbrdf", "planes": [{"channels": ["NX"]}]}),
+    ("sv_display", {"layerType": "svbrdf", "planes": [{"channels": ["NX"]}]}),
+    ("sv_display_image", {"layerType": "svbrdf", "planes": [{"channels": ["KD_R"]}]}),
     ("sv_geometry", {"layerType": "svbrdf", "planes": [{"channels": ["NX"]}]}),
     ("sv_image", {"layerType": "svbrdf", "planes": [{"channels": ["KD_R"]}]}),
     ("img_rgb", {"layerType": "image"}), ("img_y", {"layerType": "image"}),

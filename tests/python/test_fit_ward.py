@@ -137,7 +137,7 @@ def test_cli_ward_shares_one_normal_map_with_normals(tmp_path: Path,
     assert list(layers) == ["normals", "ward"]
     ward = layers["ward"]["service"]
     assert ward["layerType"] == "svbrdf"
-    assert ward["glossLimits"] == list(GLOSS_LIMITS) and ward["inputColorSpace"] == "linear"
+    assert ward["glossLimits"] == list(GLOSS_LIMITS) and ward["inputColorSpace"] == "display"
     assert [p["channels"][0] for p in ward["planes"]] == ["NX", "KD_R", "KS_R", "GLOSS"]
     # one normal map, referenced by both layers
     normals_plane = layers["normals"]["service"]["planes"][0]["service"]["id"]

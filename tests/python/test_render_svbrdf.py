@@ -152,3 +152,25 @@ def test_image_layers_show_the_texels() -> None:
     grey = {"layerType": "image", "planes": [{"channels": ["Y"]}]}
     out = render(grey, {"Y": rgb[..., 0]}, mode="achromatic")
     np.testing.assert_allclose(out, np.repeat(rgb[..., :1], 3, axis=-1), atol=1e-6)
+
+
+@pytest.mark.parametrize("light", [(0.0, 0.0), (0.4, -0.5)])
+def test_display_space_shades_the_stored_values_as_they_are(light: tuple[float, float]) -> None:
+    """``inputColorSpace: "display"`` (what lanterna fit writes): no decode, no final encode."""
+    n = unit_normals(3, 4, seed=5)
+    rng = np.random.default_rng(6)
+    kd, ks = rng.uniform(0.1, 0.7, (3, 4, 3)), rng.uniform(0.0, 0.3, (3, 4, 3))
+    gloss = rng.uniform(0, 1, (3, 4))
+    ch = channels(n, kd, ks, gloss)
+    alpha = 0.05 + gloss * 0.4
+    radiance = ward(n, kd.astype(np.float32), ks.astype(np.float32), alpha.astype(np.float32),
+                    make_light(*light))
+    got = render(block(N, KD, KS, GLOSS, colorspace="display", limits=(0.05, 0.45)), ch, light)
+    np.testing.assert_allclose(got, np.clip(radiance, 0, 1), atol=1e-5)
+    linear = render(block(N, KD, KS, GLOSS, colorspace="linear", limits=(0.05, 0.45)), ch, light)
+    np.testing.assert_allclose(linear, linear_to_srgb(np.clip(radiance, 0, 1)), atol=1e-5)
+    assert float(np.abs(linear - got).max()) > 0.05  # the two spaces really differ
+    albedo = render(block(N, KD, colorspace="display"), channels(n, kd), light, "albedo")
+    np.testing.assert_allclose(albedo, kd, atol=1e-6)
+    flat = render(block(KD, colorspace="display"), channels(kd=kd), light)
+    np.testing.assert_allclose(flat, kd, atol=1e-6)

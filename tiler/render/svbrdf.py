@@ -62,11 +62,16 @@ def ward(n: F32, kd: F32, ks: F32, alpha: F32, light: Light) -> F32:
 def svbrdf_surface(layer: Mapping[str, Any], channels: Mapping[str, F32]) -> Surface:
     """Build the :class:`~.shading.Surface` of a shape + material layer (any subset of maps)."""
     lo, hi = (float(v) for v in layer.get("glossLimits", (0.01, 0.5)))
-    srgb_in = layer.get("inputColorSpace", "linear") == "srgb"
+    space = layer.get("inputColorSpace", "linear")
+    srgb_in = space == "srgb"
+    display = space == "display"  # maps and shading in display values: no decode, no encode
     stored_kd = _group(channels, ("KD_R", "KD_G", "KD_B"))
 
     def linear(x: F32) -> F32:
         return srgb_to_linear(x) if srgb_in else x
+
+    def encode(x: F32) -> F32:
+        return x if display else linear_to_srgb(x)
 
     normal = _group(channels, ("NX", "NY", "NZ"))
     if normal is None:  # a pure image: kd as displayed, no light
@@ -74,7 +79,7 @@ def svbrdf_surface(layer: Mapping[str, Any], channels: Mapping[str, F32]) -> Sur
             shape = next(iter(channels.values())).shape
             disp = np.full(shape + (3,), linear_to_srgb(f32(DEFAULT_KD)), np.float32)
         else:
-            disp = stored_kd if srgb_in else linear_to_srgb(stored_kd)
+            disp = stored_kd if srgb_in or display else linear_to_srgb(stored_kd)
         return Surface(color=lambda light: disp, normal=None, albedo=disp)
     n = normalize(normal)
     one = np.ones(n.shape, np.float32)
@@ -89,12 +94,11 @@ def svbrdf_surface(layer: Mapping[str, Any], channels: Mapping[str, F32]) -> Sur
                  else f32(np.float32(lo) + gloss * np.float32(hi - lo)))
 
     def color(light: Light) -> F32:
-        return linear_to_srgb(clamp01(ward(n, kd, ks, alpha, light)
-                                      * np.float32(light.intensity)))
+        return encode(clamp01(ward(n, kd, ks, alpha, light) * np.float32(light.intensity)))
 
     def diffuse(light: Light, p: Params) -> F32:
         cosi = np.maximum(np.float32(0), dot3(n, light.direction))[..., None]
-        return linear_to_srgb(clamp01(kd * cosi * np.float32(light.intensity)))
+        return encode(clamp01(kd * cosi * np.float32(light.intensity)))
 
     def specular(light: Light, p: Params) -> F32:
         s = np.power(clamp01(dot3(n, light.h)), np.float32(p["specExponent"]))[..., None]
@@ -102,7 +106,7 @@ def svbrdf_surface(layer: Mapping[str, Any], channels: Mapping[str, F32]) -> Sur
         kd_, ks_ = np.float32(p["specKd"]), np.float32(p["specKs"])
         return f32(c * kd_ + mean_rgb(c)[..., None] * ks_ * np.float32(2) * s)
 
-    albedo = f32(np.broadcast_to(linear_to_srgb(kd), n.shape))
+    albedo = f32(np.broadcast_to(encode(kd), n.shape))
     return Surface(color=color, normal=n, albedo=albedo,
                    special={"diffuse": diffuse, "specular": specular})
 

@@ -16,7 +16,8 @@ export type LayerType = 'ptm' | 'hsh' | 'svbrdf' | 'image';
 /** Colour spaces of a PTM layer. */
 export type PtmColorspace = 'lrgb' | 'rgb';
 /** How an svbrdf layer's kd and ks are encoded. */
-export type InputColorSpace = 'linear' | 'srgb';
+/** How svbrdf kd/ks are encoded; `display`: display values, shaded as they are (docs/rendering.md). */
+export type InputColorSpace = 'linear' | 'srgb' | 'display';
 
 /** Term counts of an HSH layer. */
 export const HSH_TERM_COUNTS = [4, 9, 16] as const;
@@ -235,8 +236,9 @@ export function parseRelightService(block: unknown): RelightLayer {
     }
   }
   const inputColorSpace = block.inputColorSpace ?? 'linear';
-  if (inputColorSpace !== 'linear' && inputColorSpace !== 'srgb') {
-    throw new RelightServiceError(`inputColorSpace must be "linear" or "srgb", got ${JSON.stringify(inputColorSpace)}`);
+  if (inputColorSpace !== 'linear' && inputColorSpace !== 'srgb' && inputColorSpace !== 'display') {
+    throw new RelightServiceError(
+      `inputColorSpace must be "linear", "srgb" or "display", got ${JSON.stringify(inputColorSpace)}`);
   }
   const glossLimits = parseGlossLimits(block.glossLimits);
   const width = positiveInt(block.width, 'width');

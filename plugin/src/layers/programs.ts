@@ -50,6 +50,7 @@ export function svbrdfDefines(layer: RelightLayer): Record<string, number> {
     SV_KS: maps.ks,
     SV_GLOSS: maps.gloss,
     SV_SRGB: layer.inputColorSpace === 'srgb' ? 1 : 0,
+    SV_DISPLAY: layer.inputColorSpace === 'display' ? 1 : 0,
   };
 }
 
@@ -91,7 +92,7 @@ export function fragmentShaderSource(spec: ProgramKind | ProgramSpec, mode: Rend
   const all = {
     ...MODE_DEFINES,
     ...defines,
-    ...(kind === 'svbrdf' ? { SV_NORMALS: 0, SV_KD: 1, SV_KS: 2, SV_GLOSS: 3, SV_SRGB: 0 } : {}),
+    ...(kind === 'svbrdf' ? { SV_NORMALS: 0, SV_KD: 1, SV_KS: 2, SV_GLOSS: 3, SV_SRGB: 0, SV_DISPLAY: 0 } : {}),
     ...(typeof spec === 'string' ? {} : spec.defines),
     MODE: RENDER_MODES.indexOf(mode),
     STAGE: STAGE[stage],

@@ -2,7 +2,8 @@
  * svbrdf layer functions (contract `layerType: "svbrdf"`, docs/rendering.md): Lambert + isotropic
  * Ward with E = π. Which maps exist is compiled in (`#define`s from `svbrdfDefines`): `SV_NORMALS`,
  * `SV_KD`, `SV_KS`, `SV_GLOSS` are the plane index of each map (-1 when absent), `SV_SRGB` is 1 when
- * kd/ks are sRGB-encoded. (Branching on uniforms instead costs as much as both sides on a CPU
+ * kd/ks are sRGB-encoded, `SV_DISPLAY` is 1 when maps and shading are in display values (no decode,
+ * no final encode: `inputColorSpace: "display"`, what `lanterna fit` writes by default). (Branching on uniforms instead costs as much as both sides on a CPU
  * rasteriser.) Without a normal map the layer is a flat image (kd, unshaded).
  */
 import { U_GLOSS_LIMITS, U_HALF, U_LIGHT, U_PARAM } from '../../gl/uniforms';
@@ -18,6 +19,15 @@ vec3 sv_decode(vec3 v) {
   return srgb_to_linear(v);
 #else
   return v;
+#endif
+}
+
+// the display value of a shaded (linear, or display when SV_DISPLAY) colour
+vec3 sv_encode(vec3 v) {
+#if SV_DISPLAY == 1
+  return v;
+#else
+  return linear_to_srgb(v);
 #endif
 }
 
@@ -54,7 +64,7 @@ vec3 sv_kd() {
 // no shape: a plain image (kd as stored when sRGB)
 vec3 lt_normal() { return vec3(0.0, 0.0, 1.0); }
 vec3 lt_color() {
-#if SV_KD >= 0 && SV_SRGB == 1
+#if SV_KD >= 0 && (SV_SRGB == 1 || SV_DISPLAY == 1)
   return lanterna_plane(SV_KD);
 #else
   return linear_to_srgb(clamp01(sv_kd()));
@@ -74,13 +84,13 @@ vec3 lt_color() {
   float tan2 = (1.0 - nh * nh) / (nh * nh);
   float a2 = alpha * alpha;
   vec3 radiance = kd * cosi + ks * exp(-tan2 / a2) * sqrt(cosi / cosr) / (4.0 * a2);
-  return linear_to_srgb(clamp01(radiance * ${I}));
+  return sv_encode(clamp01(radiance * ${I}));
 }
-vec3 lt_albedo() { return linear_to_srgb(sv_kd()); }
+vec3 lt_albedo() { return sv_encode(sv_kd()); }
 #endif
 
 vec3 lt_diffuse() {
-  return linear_to_srgb(clamp01(sv_kd() * max(0.0, dot(lt_normal(), ${U_LIGHT})) * ${I}));
+  return sv_encode(clamp01(sv_kd() * max(0.0, dot(lt_normal(), ${U_LIGHT})) * ${I}));
 }
 vec3 lt_achromatic() { return vec3(luma(lt_color())); }
 vec3 lt_specular() {
