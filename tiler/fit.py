@@ -18,13 +18,14 @@ import numpy.typing as npt
 
 from .dataset import DEFAULT_BASE_URL
 from .errors import LanternaInputError
-from .fit_bands import RANK_WINDOW, SHADOW_FRACTION, normals_band, ptm_rgb_band
+from .fit_bands import normals_band, ptm_rgb_band
 from .fit_engine import fit_stream
 from .hsh_basis import hsh_weights
 from .hsh_fit import fit_hsh
 from .hsh_model import HSH_TERMS, Hsh
 from .layers import add_planes_layer
 from .lp import read_lp
+from .normals_fit import RANK_WINDOW, SHADOW_FRACTION
 from .planes import PlaneLayer
 from .plans import LayerPlan, build_dataset
 from .progress import Progress
@@ -51,7 +52,8 @@ class Normals:
 
 
 def fit_normals(images: Images, lights: Lights, *, rank_window: tuple[float, float] = RANK_WINDOW,
-                shadow: float = SHADOW_FRACTION, band_rows: int = 64) -> Normals:
+                shadow: float = SHADOW_FRACTION, iterations: int = 0,
+                band_rows: int = 64) -> Normals:
     """Estimate normals by robust photometric stereo (Woodham with per-pixel sample selection).
 
     Per pixel, on the luminance ``Y`` of the ``N`` samples: keep the samples whose rank lies in
@@ -60,7 +62,8 @@ def fit_normals(images: Images, lights: Lights, *, rank_window: tuple[float, flo
     maximum; solve ``g = argmin Σ (Y_i − g·l_i)²`` over them; ``n = g/|g|``, flipped so
     ``n_z ≥ 0``.  Pixels with fewer than 3 kept samples use every non-shadowed sample.  The
     albedo is the per-channel least-squares factor ``Σ I·s / Σ s²`` with ``s = max(0, n·l)``
-    over the same samples.
+    over the same samples.  ``iterations > 0`` then refines every pixel by Tukey IRLS over the
+    kept samples (:func:`~lanterna.tiler.normals_fit.solve_normals_band`; for linear light).
 
     Parameters
     ----------
@@ -78,7 +81,7 @@ def fit_normals(images: Images, lights: Lights, *, rank_window: tuple[float, flo
     albedo = np.empty((h, w, 3), np.float32)
     for y0 in range(0, h, band_rows):
         out = normals_band(images[:, y0:y0 + band_rows], lights, rank_window=rank_window,
-                           shadow=shadow)
+                           shadow=shadow, iterations=iterations)
         normals[y0:y0 + band_rows] = out["normals"]
         albedo[y0:y0 + band_rows] = out["albedo"]
     return Normals(normals, albedo)

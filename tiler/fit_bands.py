@@ -13,6 +13,7 @@ import numpy as np
 import numpy.typing as npt
 
 from .hsh_basis import hsh_weights
+from .normals_fit import ITERATIONS, RANK_WINDOW, SHADOW_FRACTION, solve_normals_band
 from .ptm_model import ptm_weights
 from .ward_fit import fit_ward, predict_ward, quantize_ward
 
@@ -22,10 +23,8 @@ Out = dict[str, npt.NDArray[np.generic]]
 
 #: Rec. 709 luminance weights used by ptmfit (``computepoly.c``).
 LUMINANCE_WEIGHTS = (0.2125, 0.7154, 0.0721)
-#: Per-pixel rank window kept by the robust photometric stereo (fractions of the light count).
-RANK_WINDOW = (0.25, 0.9)
-#: Samples darker than this fraction of the pixel's brightest sample count as shadowed.
-SHADOW_FRACTION = 0.05
+#: Tukey IRLS steps of the photometric stereo in linear light (none on values as stored).
+IRLS_ITERATIONS = ITERATIONS
 
 
 def ptm_rgb_band(band: Band, pinv255: npt.NDArray[np.float32]) -> Out:
@@ -55,34 +54,19 @@ def hsh_band(band: Band, pinv: npt.NDArray[np.float32]) -> Out:
 
 
 def normals_band(band: Band, lights: Lights, *, rank_window: tuple[float, float] = RANK_WINDOW,
-                 shadow: float = SHADOW_FRACTION) -> Out:
+                 shadow: float = SHADOW_FRACTION, iterations: int = 0) -> Out:
     """Robust photometric stereo: ``normals (b, W, 3)`` unit, ``albedo (b, W, 3)``.
 
-    See :func:`lanterna.tiler.fit.fit_normals` for the method.
+    The rank-window selection of :func:`lanterna.tiler.fit.fit_normals`, refined by
+    ``iterations`` steps of Tukey IRLS (:func:`~lanterna.tiler.normals_fit.solve_normals_band`;
+    0 = the rank window alone, the default for values as stored).
     """
     n, b, w, _ = band.shape
-    lo, hi = int(np.floor(rank_window[0] * n)), int(np.ceil(rank_window[1] * n))
-    lf = lights.astype(np.float64)
-    outer = np.einsum("ni,nj->nij", lf, lf)
     lum = (band @ np.asarray(LUMINANCE_WEIGHTS, np.float32)).reshape(n, -1).astype(np.float64)
-    lit = lum > shadow * lum.max(axis=0, keepdims=True)
-    ranks = np.argsort(np.argsort(lum, axis=0, kind="stable"), axis=0, kind="stable")
-    keep = lit & (ranks >= lo) & (ranks < hi)
-    few = keep.sum(axis=0) < 3
-    keep[:, few] = lit[:, few]
-    wts = keep.astype(np.float64)
-    a = np.einsum("np,nij->pij", wts, outer) + 1e-9 * np.eye(3)
-    rhs = np.einsum("np,ni->pi", wts * lum, lf)
-    g = np.linalg.solve(a, rhs[..., None])[..., 0]
-    norm = np.linalg.norm(g, axis=1, keepdims=True)
-    nrm = np.where(norm > 1e-12, g / np.where(norm > 1e-12, norm, 1.0), [0.0, 0.0, 1.0])
-    nrm *= np.where(nrm[:, 2:3] < 0, -1.0, 1.0)
-    shade = np.maximum(nrm @ lf.T, 0.0).T * wts
-    colour = band.reshape(n, -1, 3).astype(np.float64)
-    num = np.einsum("np,npc->pc", shade, colour)
-    den = np.maximum((shade * shade).sum(axis=0), 1e-12)[:, None]
-    return {"normals": nrm.reshape(b, w, 3).astype(np.float32),
-            "albedo": (num / den).reshape(b, w, 3).astype(np.float32)}
+    nrm, albedo = solve_normals_band(lum, band.reshape(n, -1, 3), lights.astype(np.float64),
+                                     rank_window=rank_window, shadow=shadow,
+                                     iterations=iterations)
+    return {"normals": nrm.reshape(b, w, 3), "albedo": albedo.reshape(b, w, 3)}
 
 
 def ward_band(band: Band, lights: Lights, normals: npt.NDArray[np.float32]) -> Out:

@@ -90,7 +90,8 @@ class _Solver:
             out["hsh"] = fb.hsh_band(band, self.pinv["hsh"])
         if {"normals", "ward"} & set(self.keys):
             physical = srgb_to_linear(band) if self.linear else band
-            nrm = fb.normals_band(physical, self.lights)
+            nrm = fb.normals_band(physical, self.lights,
+                                  iterations=fb.IRLS_ITERATIONS if self.linear else 0)
             out["normals"] = nrm
             if "ward" in self.keys:
                 normals = nrm["normals"].astype(np.float32)
