@@ -2,7 +2,6 @@
 
 from __future__ import annotations
 
-import io
 import os
 from pathlib import Path
 from typing import Any
@@ -119,27 +118,27 @@ def test_regions_at_full_resolution_are_exact(client: FlaskClient, region: str) 
     assert np.array_equal(_pixels(resp.data), SOURCE[y:y + h, x:x + w])
 
 
-@pytest.mark.parametrize("path, box, size, tolerance", [
-    # pyramid tiles at scale factors 2 and 4: a 2x2 / 4x4 box filter, read from the level
-    ("0,0,512,512/256,256", (0, 0, 512, 512), (256, 256), 1.0),
-    ("512,512,512,188/128,47", (512, 512, 512, 188), (128, 47), 1.0),
-    # arbitrary sizes: a level read then resized (lanczos), against numpy's area mean
-    ("full/300,", (0, 0, W, H), (300, 191), 2.0),
-    ("100,50,700,500/!210,210", (100, 50, 700, 500), (210, 150), 2.0),
-    ("full/pct:37", (0, 0, W, H), (407, 259), 2.0),
+@pytest.mark.parametrize("path, box, size, mean_tol, max_tol", [
+    # Pyramid tiles at scale factors 2 and 4 are the level's pixels: a 2x2 / 4x4 box mean,
+    # rounded (measured: mean 0.15 / 0.40, max 0 / 1).
+    ("0,0,512,512/256,256", (0, 0, 512, 512), (256, 256), 0.5, 1),
+    ("512,512,512,188/128,47", (512, 512, 512, 188), (128, 47), 0.5, 1),
+    # Other sizes: a level read, then a lanczos resize, against numpy's area mean (measured:
+    # mean 0.30-0.31, max 13-24 at the edges of the sharp red block, where filters differ).
+    ("full/300,", (0, 0, W, H), (300, 191), 0.6, 32),
+    ("100,50,700,500/!210,210", (100, 50, 700, 500), (210, 150), 0.6, 32),
+    ("full/pct:37", (0, 0, W, H), (407, 259), 0.6, 32),
 ])
 def test_resized_requests_match_numpy(client: FlaskClient, path: str,
                                       box: tuple[int, int, int, int], size: tuple[int, int],
-                                      tolerance: float) -> None:
+                                      mean_tol: float, max_tol: int) -> None:
     resp = client.get(f"{BASE}/{path}/0/default.png")
     out = _pixels(resp.data).astype(np.float64)
     x, y, w, h = box
     expected = _area_resize(SOURCE[y:y + h, x:x + w], *size)
     assert out.shape == expected.shape
-    # Mean error within the tolerance (grey levels), and no pixel off by more than 40 (the
-    # sharp red block's edges are where filters differ most).
-    assert np.abs(out - expected).mean() <= tolerance
-    assert np.abs(out - expected).max() <= 40
+    err = np.abs(out - expected)  # in grey levels
+    assert err.mean() <= mean_tol and err.max() <= max_tol
 
 
 def test_small_outputs_read_a_small_level(client: FlaskClient,
@@ -330,4 +329,3 @@ def test_encode_accepts_every_band_layout() -> None:
                 data = encode(out, fmt, lossless=True)
                 back = pyvips.Image.new_from_buffer(data, "")
                 assert (back.width, back.height) == (8, 6), (bands, quality, fmt)
-    assert io.BytesIO(b"") is not None
