@@ -1,14 +1,16 @@
 """Fit relightable layers (PTM, HSH, normals, Lambert + Ward) to a multi-light collection.
 
-One load of the images serves every requested model.  Each model is a row of :data:`MODELS`:
-how to fit it and how to predict an image under a new light, so the leave-one-out quality
-report (:func:`leave_one_out`) treats them alike.  See ``docs/fitting.md``.
+The library API on a whole stack (in memory, or a :class:`StackReader` read in bands): one
+function per model returning its model object, the table of models (:func:`model_table`) and
+the leave-one-out report (:func:`leave_one_out`).  ``lanterna fit`` runs them through the
+streaming engine (:mod:`~lanterna.tiler.fit_engine`, :mod:`~lanterna.tiler.fit_run`), built on
+the same per-band solvers (:mod:`~lanterna.tiler.fit_bands`).  See ``docs/fitting.md``.
 """
 
 from __future__ import annotations
 
 import tempfile
-from collections.abc import Callable, Sequence
+from collections.abc import Callable
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
@@ -16,19 +18,13 @@ from typing import Any
 import numpy as np
 import numpy.typing as npt
 
-from .dataset import DEFAULT_BASE_URL
 from .errors import LanternaInputError
 from .fit_bands import normals_band, ptm_rgb_band
 from .fit_engine import fit_stream
 from .hsh_basis import hsh_weights
 from .hsh_fit import fit_hsh
 from .hsh_model import HSH_TERMS, Hsh
-from .layers import add_planes_layer
-from .lp import read_lp
 from .normals_fit import RANK_WINDOW, SHADOW_FRACTION
-from .planes import PlaneLayer
-from .plans import LayerPlan, build_dataset
-from .progress import Progress
 from .ptm_fit import fit_ptm_lrgb, ptm_design_matrix, quantize_coefficients
 from .ptm_model import Ptm
 from .stack import StackReader
@@ -215,69 +211,3 @@ def leave_one_out(images: Images, lights: Lights, model: Model,
         result = fit_stream(images, lights, [model.key], Path(scratch), terms=model.terms,
                             band_rows=band_rows, holdout_every=every, layers=False)
     return result.quality[model.key]
-
-
-def fit_collection(images_dir: Path, lp: Path, models: Sequence[str], out: Path, *,
-                   terms: int = 9, name: str | None = None, label: str | None = None,
-                   base_url: str = DEFAULT_BASE_URL, tile_size: int = 256, force: bool = False,
-                   band_rows: int | None = None, tiff: bool = False,
-                   scratch: Path | None = None,
-                   report: Callable[[str], None] = lambda _: None,
-                   progress: Callable[[str, int], Progress] | None = None) -> dict[str, Any]:
-    """Fit ``models`` to the collection and write them as the layers of dataset ``out``.
-
-    One streamed pass (:func:`~lanterna.tiler.fit_engine.fit_stream`) reads the images in bands
-    of ``band_rows`` rows (default: as many as fit a 48 MB float band) and fits every model and
-    its leave-one-out twin; the planes are written to a scratch folder (``scratch``, default a
-    temporary folder beside ``out``, removed afterwards) and then tiled.  Memory is bounded by
-    the band whatever the image size; the scratch folder needs about ``4 · coefficients`` bytes
-    per pixel for PTM/HSH plus the 8-bit planes.  Everything is fitted before the dataset is
-    written (atomically, by :func:`build_dataset`), so bad input leaves nothing behind.
-    Returns the quality report (also stored as ``quality`` in ``lanterna.json``).
-    """
-    table = model_table(terms, band_rows)
-    unknown = [m for m in models if m not in table]
-    if unknown or not models:
-        raise LanternaInputError(None, f"unknown model(s) {', '.join(unknown) or '(none)'}; "
-                                 f"expected {', '.join(table)}")
-    keys = list(dict.fromkeys(models))
-    files, lights = read_lp(lp, images_dir)
-    stack = StackReader(files)
-    report(f"streaming {len(files)} images of {stack.shape[2]}x{stack.shape[1]} from "
-           f"{images_dir}")
-    source = f"{Path(images_dir).name} + {Path(lp).name}"
-    held_every = HOLDOUT_EVERY if len(files) >= 2 * HOLDOUT_EVERY else 0
-    quality: dict[str, Any] = {"protocol": f"fit without every {HOLDOUT_EVERY}th light "
-                               "(from the first), PSNR of the prediction on those, RGB 0-1",
-                               "models": {}}
-    parent = Path(scratch) if scratch else Path(out).resolve().parent
-    parent.mkdir(parents=True, exist_ok=True)
-    with tempfile.TemporaryDirectory(prefix=".lanterna-fit-", dir=parent) as tmp:
-        try:
-            result = fit_stream(stack, lights, keys, Path(tmp), terms=terms,
-                                band_rows=band_rows, holdout_every=held_every,
-                                progress=progress)
-        except ValueError as err:
-            raise LanternaInputError(lp, f"cannot fit {err}") from None
-        plans = []
-        for key in keys:
-            model = table[key]
-            if key in result.quality:
-                q = result.quality[key]
-                quality["models"][model.id] = q
-                report(f"{model.id}: leave-one-out PSNR mean {q['meanPsnr']:.2f} dB, "
-                       f"median {q['medianPsnr']:.2f} dB over {len(q['heldOut'])} lights")
-            plans.append(_plan(result.layers[key], model.id, model.label, source))
-        build_dataset(plans, out, name=name or Path(out).name,
-                      label=label or Path(images_dir).name, base_url=base_url,
-                      tile_size=tile_size, force=force, quality=quality, tiff=tiff)
-    return quality
-
-
-def _plan(layer: PlaneLayer, lid: str, label: str, source: str) -> LayerPlan:
-    """A dataset layer from fitted planes; fitted normal maps are stored once per dataset."""
-    share = {i: f"fitted:{Path(getattr(g.data, 'path', ''))}" for i, g in
-             enumerate(layer.groups) if layer.group_names[i] == "normals"}
-    return LayerPlan(lid, label, layer.width, layer.height, source,
-                     lambda ds: add_planes_layer(ds, layer, layer_id=lid, label=label,
-                                                 share=share))

@@ -12,7 +12,8 @@ import pyvips
 
 from lanterna.cli import main
 from lanterna.tiler.errors import LanternaInputError
-from lanterna.tiler.fit import fit_collection, fit_normals, leave_one_out, model_table
+from lanterna.tiler.fit import fit_normals, leave_one_out, model_table
+from lanterna.tiler.fit_run import fit_collection
 from lanterna.tiler.stack import load_image, load_stack
 
 H, W, N = 24, 32, 50

@@ -9,7 +9,8 @@ from typing import Any
 import numpy as np
 import pytest
 
-from lanterna.tiler.fit import fit_collection, fit_normals, leave_one_out, model_table
+from lanterna.tiler.fit import fit_normals, leave_one_out, model_table
+from lanterna.tiler.fit_run import fit_collection
 from lanterna.tiler.lp import read_lp
 from lanterna.tiler.stack import load_stack
 

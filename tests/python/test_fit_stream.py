@@ -13,7 +13,8 @@ import pytest
 import pyvips
 
 from lanterna.tiler.errors import LanternaInputError
-from lanterna.tiler.fit import fit_collection, model_table
+from lanterna.tiler.fit import model_table
+from lanterna.tiler.fit_run import fit_collection
 from lanterna.tiler.layers import encode_normals
 from lanterna.tiler.lp import read_lp
 from lanterna.tiler.stack import StackReader, load_stack
