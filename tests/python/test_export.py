@@ -231,3 +231,17 @@ def test_two_datasets_with_one_name_are_refused(root: Path, tmp_path: Path,
                                   "-o", str(tmp_path / "out")])
     assert "two datasets are named 'hsh'" in err
     assert not (tmp_path / "out").exists()
+
+
+def test_files_are_copied_when_they_cannot_be_linked(root: Path, tmp_path: Path,
+                                                     monkeypatch: pytest.MonkeyPatch) -> None:
+    def cross_device(src: object, dst: object) -> None:
+        raise OSError(18, "Invalid cross-device link")
+
+    monkeypatch.setattr(export_mod.os, "link", cross_device)
+    report = export(root / "svbrdf", tmp_path / "d", NEW)
+    assert report.linked == 0 and report.copied > 20
+    for rel, src in files(root / "svbrdf").items():
+        dst = tmp_path / "d" / "svbrdf" / rel
+        if not rel.endswith(".json"):
+            assert dst.read_bytes() == src.read_bytes() and not os.path.samefile(src, dst)
