@@ -174,13 +174,23 @@ def _tile_file(out_dir: Path, path: str, fmt: str) -> Path:
 
 def _complete_tiles(image: pyvips.Image, out_dir: Path, fmt: str, tile_size: int,
                     factors: list[int]) -> None:
-    """Give every tile a client may ask for a file, reusing dzsave's file for the same pixels."""
+    """Give every tile a client may ask for a file, reusing dzsave's file for the same pixels.
+
+    What dzsave wrote is listed once (``region/size`` folders), so only the few missing paths
+    cost any file-system calls.
+    """
     width, height = image.width, image.height
-    for path in set(geo.osd_tile_paths(width, height, tile_size, factors)) | {
+    wanted = set(geo.osd_tile_paths(width, height, tile_size, factors)) | {
         geo.canonical_path(width, height, t)
         for f in factors
         for t in geo.spec_tiles(width, height, tile_size, f)
-    }:
+    }
+    name = f"default.{fmt}"
+    written = {f"{region.name}/{size.name}"
+               for region in os.scandir(out_dir) if region.is_dir()
+               for size in os.scandir(region.path)
+               if os.path.isfile(os.path.join(size.path, "0", name))}
+    for path in sorted(wanted - written):
         _ensure(image, out_dir, fmt, geo.parse_region_size(width, height, path), path)
 
 
