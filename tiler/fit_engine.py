@@ -16,10 +16,10 @@ The results are :class:`~lanterna.tiler.planes.PlaneLayer` s whose groups are th
 from __future__ import annotations
 
 import math
-from collections.abc import Callable, Sequence
+from collections.abc import Callable, Iterable, Iterator, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Any, BinaryIO
+from typing import Any, BinaryIO, Protocol
 
 import numpy as np
 import numpy.typing as npt
@@ -106,6 +106,48 @@ PREDICT: dict[str, Callable[[fb.Out, npt.NDArray[np.float64]], fb.Band]] = {
 }
 
 
+_StepResult = tuple[dict[str, fb.Out] | None, dict[str, npt.NDArray[np.float64]]]
+
+
+@dataclass
+class _Step:
+    """Everything done to one band: the layer fit and the held-out squared errors.
+
+    A picklable callable, so a Dask worker can run it on the band it reads.
+    """
+
+    full: _Solver
+    loo: _Solver | None
+    held: npt.NDArray[np.intp]
+    train: npt.NDArray[np.intp]
+    layers: bool
+
+    def __call__(self, band: npt.NDArray[np.float32]) -> _StepResult:
+        keys = self.full.keys
+        outs = self.full.solve(band) if self.layers else None
+        sse = {k: np.zeros(len(self.held)) for k in keys}
+        if self.loo is not None:
+            fitted = self.loo.solve(band[self.train])
+            for k in keys:
+                for j, i in enumerate(self.held):
+                    pred = PREDICT[k](fitted[k], self.full.lights[i])
+                    if self.full.linear and k in ("normals", "ward"):
+                        pred = linear_to_srgb(pred)
+                    diff = pred.astype(np.float64) - band[i]
+                    sse[k][j] = float(np.vdot(diff, diff))
+        return outs, sse
+
+
+class BandRunner(Protocol):
+    """Runs :class:`_Step` on the row bands of a stack elsewhere (e.g. on a Dask cluster)."""
+
+    def bands(self, images: Images, spans: Sequence[tuple[int, int]],
+              step: Callable[[npt.NDArray[np.float32]], _StepResult]
+              ) -> Iterator[_StepResult]:
+        """Yield ``step(images[:, y0:y1])`` for every span, in order."""
+        ...
+
+
 class _Spill:
     """Float coefficients appended band by band to a scratch file, with their running range."""
 
@@ -147,7 +189,8 @@ class FitResult:
 def fit_stream(images: Images, lights: Lights, keys: Sequence[str], scratch: Path, *,
                terms: int = 9, band_rows: int | None = None, holdout_every: int = 0,
                linear: bool = False, layers: bool = True,
-               progress: Callable[[str, int], Progress] | None = None) -> FitResult:
+               progress: Callable[[str, int], Progress] | None = None,
+               runner: BandRunner | None = None) -> FitResult:
     """Fit the models ``keys`` (of :data:`MODEL_KEYS`) in one pass; planes go to ``scratch``.
 
     ``holdout_every > 0`` also fits without every ``holdout_every``-th light (from the first)
@@ -158,7 +201,9 @@ def fit_stream(images: Images, lights: Lights, keys: Sequence[str], scratch: Pat
     linear light first (``linear=True``: ``"linear"`` layers, encoded for display by the
     viewer; their report compares the display encoding of the prediction).  PTM and HSH always
     fit the stored values, which the viewer shows as they are.
-    ``layers=False`` skips the layers (the report only).  ``progress(label, total)`` makes a
+    ``layers=False`` skips the layers (the report only).  ``runner`` solves the bands elsewhere
+    (:class:`~lanterna.tiler.fit_dask.DaskRunner`); results are consumed in order, so the
+    output is the same as the local loop's.  ``progress(label, total)`` makes a
     progress reporter per stage.
 
     Raises
@@ -180,21 +225,20 @@ def fit_stream(images: Images, lights: Lights, keys: Sequence[str], scratch: Pat
     sse = {k: np.zeros(len(held)) for k in keys}
     sinks = _Sinks(scratch, w, h)
     bar = progress("fitting " + ", ".join(keys), h) if progress else None
-    for y0 in range(0, h, rows):
-        band = np.asarray(images[:, y0:y0 + rows], np.float32)
-        if layers:
-            sinks.take(full.solve(band), keys)
-        if loo is not None:
-            outs = loo.solve(band[train])
-            for k in keys:
-                for j, i in enumerate(held):
-                    pred = PREDICT[k](outs[k], lights[i])
-                    if linear and k in ("normals", "ward"):
-                        pred = linear_to_srgb(pred)
-                    diff = pred.astype(np.float64) - band[i]
-                    sse[k][j] += float(np.vdot(diff, diff))
+    spans = [(y0, min(h, y0 + rows)) for y0 in range(0, h, rows)]
+    step = _Step(full, loo, held, train, layers)
+    if runner is None:
+        results: Iterable[_StepResult] = (step(np.asarray(images[:, y0:y1], np.float32))
+                                          for y0, y1 in spans)
+    else:
+        results = runner.bands(images, spans, step)
+    for (_, y1), (outs, band_sse) in zip(spans, results, strict=True):
+        if outs is not None:
+            sinks.take(outs, keys)
+        for k in keys:
+            sse[k] += band_sse[k]
         if bar:
-            bar.update(min(h, y0 + rows))
+            bar.update(y1)
     space = "linear" if linear else "display"
     fitted = sinks.finish(keys, terms, space, progress) if layers else {}
     quality = {}

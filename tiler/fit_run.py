@@ -8,6 +8,7 @@ build_dataset`): bad input leaves nothing behind.  See ``docs/fitting.md``.
 
 from __future__ import annotations
 
+import contextlib
 import re
 import tempfile
 from collections.abc import Callable, Sequence
@@ -22,6 +23,7 @@ from .dataset import DEFAULT_BASE_URL
 from .errors import LanternaInputError
 from .fit import HOLDOUT_EVERY, model_table
 from .fit_bands import LUMINANCE_WEIGHTS
+from .fit_dask import DaskRunner
 from .fit_engine import fit_stream
 from .layers import add_planes_layer
 from .lp import read_lp
@@ -81,7 +83,8 @@ def fit_sets(sets: Sequence[ImageSet], models: Sequence[str], out: Path, *,
              name: str | None = None, label: str | None = None,
              base_url: str = DEFAULT_BASE_URL, tile_size: int = 256, force: bool = False,
              band_rows: int | None = None, tiff: bool = False, scratch: Path | None = None,
-             fit_space: str = "stored", report: Callable[[str], None] = lambda _: None,
+             fit_space: str = "stored", scheduler: str | None = None,
+             report: Callable[[str], None] = lambda _: None,
              progress: ProgressFactory | None = None) -> dict[str, Any]:
     """Fit ``models`` to every image set (and fusion) and write them as one dataset ``out``.
 
@@ -91,7 +94,9 @@ def fit_sets(sets: Sequence[ImageSet], models: Sequence[str], out: Path, *,
     the stack whose R, G, B are the luminances of A, B, C.  Camera RAW files are decoded once
     into the scratch folder (:mod:`~lanterna.tiler.raw`).  ``fit_space`` is ``"stored"``
     (values as stored, the RTI convention) or ``"linear"`` (the photometric models fit
-    linear light).  Returns the quality report (also stored as ``quality``).
+    linear light).  ``scheduler`` (a Dask scheduler address, or ``local[:N]``) solves the row
+    bands on that cluster (:mod:`~lanterna.tiler.fit_dask`), with the same result.  Returns
+    the quality report (also stored as ``quality``).
     """
     table = model_table(terms, band_rows)
     unknown = [m for m in models if m not in table]
@@ -116,7 +121,10 @@ def fit_sets(sets: Sequence[ImageSet], models: Sequence[str], out: Path, *,
                                      f"bands {', '.join(str(n) for n in names)}")
     parent = Path(scratch) if scratch else Path(out).resolve().parent
     parent.mkdir(parents=True, exist_ok=True)
-    with tempfile.TemporaryDirectory(prefix=".lanterna-fit-", dir=parent) as tmp:
+    with contextlib.ExitStack() as stack_:
+        tmp = stack_.enter_context(tempfile.TemporaryDirectory(prefix=".lanterna-fit-",
+                                                               dir=parent))
+        runner = stack_.enter_context(DaskRunner(scheduler)) if scheduler else None
         inputs = {s.name: _open_set(s, Path(tmp), progress) for s in sets}
         size = next(iter(inputs.values()))[0].shape[1:3]
         for s in sets:
@@ -156,7 +164,8 @@ def fit_sets(sets: Sequence[ImageSet], models: Sequence[str], out: Path, *,
             try:
                 result = fit_stream(stack, lights, keys, folder, terms=terms,
                                     band_rows=band_rows, holdout_every=held,
-                                    linear=fit_space == "linear", progress=progress)
+                                    linear=fit_space == "linear", progress=progress,
+                                    runner=runner)
             except ValueError as err:
                 raise LanternaInputError(lp, f"cannot fit {tag}{err}") from None
             for key in keys:

@@ -119,6 +119,15 @@ class StackReader:
     def __len__(self) -> int:
         return self.shape[0]
 
+    def __getstate__(self) -> dict[str, Any]:
+        """Pickle the file list and shape only (libvips regions stay behind; reopened lazily)."""
+        return {"files": self.files, "shape": self.shape}
+
+    def __setstate__(self, state: dict[str, Any]) -> None:
+        self.files, self.shape = state["files"], state["shape"]
+        self._regions = []
+        self._next_row = 0
+
     def rows(self, y0: int, y1: int) -> npt.NDArray[np.float32]:
         """Return rows ``y0:y1`` of every image as ``(N, y1 − y0, W, 3)`` float32 in 0–1."""
         n, h, w, _ = self.shape

@@ -55,6 +55,9 @@ def register(sub: SubParsers) -> None:
     fit.add_argument("--scratch", type=Path, metavar="DIR",
                      help="folder for the temporary planes (default: beside the output); "
                           "needs ~4 bytes per PTM/HSH coefficient per pixel")
+    fit.add_argument("--scheduler", metavar="ADDRESS",
+                     help="solve the row bands on a Dask cluster (tcp://host:8786, or local[:N] "
+                          "for N local worker processes); needs dask[distributed]")
     fit.add_argument("--quiet", action="store_true", help="no progress bars")
     dataset_args(fit, label_default="the image folder's name")
     fit.set_defaults(func=run)
@@ -93,7 +96,8 @@ def run(args: argparse.Namespace) -> int:
     fit_sets(_sets(args), args.model, args.output, fusions=fusions,
              terms=args.terms, name=args.name, label=args.label, base_url=args.base_url,
              tile_size=args.tile_size, force=args.force, band_rows=args.band_rows,
-             tiff=args.tiff, scratch=args.scratch, fit_space=args.fit_space, report=print,
+             tiff=args.tiff, scratch=args.scratch, fit_space=args.fit_space,
+             scheduler=args.scheduler, report=print,
              progress=None if args.quiet else Progress)
     print(f"wrote {args.output}")
     return 0
