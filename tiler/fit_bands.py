@@ -27,9 +27,16 @@ LUMINANCE_WEIGHTS = (0.2125, 0.7154, 0.0721)
 IRLS_ITERATIONS = ITERATIONS
 
 
+def _project(pinv: npt.NDArray[np.float32], band: Band) -> npt.NDArray[np.float32]:
+    """``(K, N) @ (N, b, W, 3)`` as one BLAS product, returned ``(b, W, 3, K)`` (a view)."""
+    n, b, w, c = band.shape
+    flat = np.ascontiguousarray(band, np.float32).reshape(n, -1)
+    return np.moveaxis((pinv @ flat).reshape(-1, b, w, c), 0, -1)
+
+
 def ptm_rgb_band(band: Band, pinv255: npt.NDArray[np.float32]) -> Out:
     """RGB PTM: ``coeffs (b, W, 3, 6)`` in 0–255 units, ``pinv255`` the ``(6, N)`` pinv × 255."""
-    return {"coeffs": np.einsum("kn,nbwc->bwck", pinv255, band)}
+    return {"coeffs": _project(pinv255, band)}
 
 
 def ptm_lrgb_band(band: Band, pinv: npt.NDArray[np.float32]) -> Out:
@@ -50,7 +57,7 @@ def ptm_lrgb_band(band: Band, pinv: npt.NDArray[np.float32]) -> Out:
 
 def hsh_band(band: Band, pinv: npt.NDArray[np.float32]) -> Out:
     """HSH: ``coeffs (b, W, 3, T)`` in 0–1 units, ``pinv`` the ``(T, N)`` pseudo-inverse."""
-    return {"coeffs": np.einsum("kn,nbwc->bwck", pinv, band)}
+    return {"coeffs": _project(pinv, band)}
 
 
 def normals_band(band: Band, lights: Lights, *, rank_window: tuple[float, float] = RANK_WINDOW,

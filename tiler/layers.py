@@ -22,8 +22,8 @@ from .planes import PlaneData, PlaneGroup, PlaneLayer
 from .ptm_model import Ptm
 from .strip_tiff import BandImage, StripTiffWriter
 
-#: Rows rendered at once for the preview of a file-backed layer.
-PREVIEW_ROWS = 256
+#: Pixels rendered at once for the preview of a file-backed layer (whole rows, at least one).
+PREVIEW_PIXELS = 1 << 22
 
 
 def _to_bytes(display: npt.NDArray[np.floating]) -> npt.NDArray[np.uint8]:
@@ -55,8 +55,9 @@ def add_planes_layer(ds: DatasetWriter, layer: PlaneLayer, *, layer_id: str, lab
         # (colour mode is per pixel, so this equals the whole-image render)
         target = banded[0].path.with_name(f"{banded[0].path.stem}-preview.tif")
         with StripTiffWriter(target, layer.width, layer.height, 3) as writer:
-            for y0 in range(0, layer.height, PREVIEW_ROWS):
-                channels = layer.channels(y0, y0 + PREVIEW_ROWS)
+            rows = max(1, PREVIEW_PIXELS // layer.width)
+            for y0 in range(0, layer.height, rows):
+                channels = layer.channels(y0, y0 + rows)
                 writer.write(_to_bytes(render(block, channels, (0.0, 0.0), "color")))
             preview: npt.NDArray[np.uint8] | pyvips.Image = writer.close().vips()
     else:

@@ -112,8 +112,8 @@ def ptm_quantisation(lo: npt.ArrayLike, hi: npt.ArrayLike
 
 def ptm_quantize(values: npt.NDArray[np.floating], scale: npt.NDArray[np.float32],
                  bias: npt.NDArray[np.int32]) -> npt.NDArray[np.uint8]:
-    """``rint(a / scale + bias)`` clipped to bytes (coefficients on the last axis)."""
-    q = np.rint(values / scale.astype(np.float64) + bias)
+    """``rint(a / scale + bias)`` (float32) clipped to bytes (coefficients on the last axis)."""
+    q = np.rint(values.astype(np.float32) / scale.astype(np.float32) + bias.astype(np.float32))
     out: npt.NDArray[np.uint8] = np.clip(q, 0, 255).astype(np.uint8)
     return out
 

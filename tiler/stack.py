@@ -148,8 +148,8 @@ class StackReader:
                 first = str(err).strip().splitlines()[0] if str(err).strip() else "read error"
                 raise LanternaInputError(path, f"cannot read image ({first})") from None
             band = np.frombuffer(raw, _NUMPY_FORMAT[img.format]).reshape(y1 - y0, w, 3)
-            if img.format in _FULL_SCALE:
-                out[i] = band.astype(np.float32) / np.float32(_FULL_SCALE[img.format])
+            if img.format in _FULL_SCALE:  # no temporary: the same values as load_image
+                np.divide(band, np.float32(_FULL_SCALE[img.format]), out=out[i])
             else:
                 out[i] = band
         self._next_row = y1

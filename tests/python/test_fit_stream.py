@@ -12,10 +12,12 @@ import numpy.typing as npt
 import pytest
 import pyvips
 
+from lanterna.tiler import layers
+from lanterna.tiler.dataset import DatasetWriter
 from lanterna.tiler.errors import LanternaInputError
 from lanterna.tiler.fit import model_table
 from lanterna.tiler.fit_run import fit_collection
-from lanterna.tiler.layers import encode_normals
+from lanterna.tiler.layers import add_hsh_layer, add_ptm_layer, encode_normals
 from lanterna.tiler.lp import read_lp
 from lanterna.tiler.stack import StackReader, load_stack
 
@@ -144,9 +146,11 @@ def _plane(ds: Path, image: str) -> npt.NDArray[np.uint8]:
 
 
 def test_lanterna_fit_planes_equal_the_in_memory_fits(
-        collection: tuple[list[Path], npt.NDArray[np.float64]], tmp_path: Path) -> None:
+        collection: tuple[list[Path], npt.NDArray[np.float64]], tmp_path: Path,
+        monkeypatch: pytest.MonkeyPatch) -> None:
     """One streamed pass for five models (37-row bands): every stored plane, byte for byte."""
     files, lights = collection
+    monkeypatch.setattr(layers, "PREVIEW_PIXELS", W * 29)  # previews in 29-row bands
     lp = files[0].parent / "lights.lp"
     lp.write_text(f"{len(files)}\n" + "".join(
         f"{f.name} {x:.9f} {y:.9f} {z:.9f}\n" for f, (x, y, z) in zip(files, lights, strict=True)))
@@ -185,3 +189,11 @@ def test_lanterna_fit_planes_equal_the_in_memory_fits(
     assert (services["normals"]["planes"][0]["service"]["id"]
             == services["ward"]["planes"][0]["service"]["id"])
     assert not list(tmp_path.glob(".lanterna-fit-*")), "scratch folder left behind"
+    # the band-wise preview of the file-backed planes equals the whole-image one
+    with DatasetWriter(tmp_path / "mem", name="mem", label="mem", width=W, height=H) as mem:
+        add_ptm_layer(mem, ptm, layer_id="ptm")
+        add_hsh_layer(mem, hsh, layer_id="hsh9")
+    for image in ("ptm_preview", "hsh9_preview"):
+        streamed = (ds / "iiif" / image / "full/max/0/default.jpg").read_bytes()
+        assert streamed == (tmp_path / "mem" / "iiif" / image / "full/max/0/default.jpg"
+                            ).read_bytes(), image

@@ -1,0 +1,200 @@
+"""Benchmark ``lanterna fit``: throughput against bare decoding, and peak memory (not a test).
+
+    .venv/bin/python bench/fit.py throughput [--size 4096] [--lights 24] [--json OUT]
+    .venv/bin/python bench/fit.py memory [--size 32768] [--lights 8] [--json OUT]
+
+``throughput`` writes a synthetic multi-light JPEG stack (a bumpy Lambert + Phong object,
+procedural in libvips, so it never exists whole in memory), then times, interleaved in one run
+(medians of ``--rounds``): the bare decode of every image (libvips, top to bottom), the read pass
+the fit makes (decode + conversion to float bands), and the streamed fit of each model with and
+without its leave-one-out twin (:func:`~lanterna.tiler.fit_engine.fit_stream`: solve,
+quantise, write the 8-bit planes; tiling excluded — see bench/tiler.py).
+
+``memory`` runs the whole ``lanterna fit`` (fit + tiling + manifest) of a large stack in a child
+process and reports its peak resident set size (``ru_maxrss`` of the child).
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import os
+import platform
+import resource
+import shutil
+import statistics
+import subprocess
+import sys
+import tempfile
+import time
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+import pyvips
+
+REPO = Path(__file__).resolve().parents[1]
+sys.path.insert(0, str(REPO))
+
+
+def lights(n: int) -> np.ndarray:
+    """``n`` unit lights on a spiral, elevation 20°–75°."""
+    k = np.arange(n)
+    elev = np.radians(20 + 55 * k / max(1, n - 1))
+    azim = k * np.pi * (3 - np.sqrt(5))
+    return np.stack([np.cos(elev) * np.cos(azim), np.cos(elev) * np.sin(azim),
+                     np.sin(elev)], axis=1)
+
+
+def make_stack(folder: Path, size: int, n: int) -> Path:
+    """Write ``n`` JPEGs (Q90) of a ``size``² procedural object and its ``lights.lp``."""
+    folder.mkdir(parents=True, exist_ok=True)
+    xy = pyvips.Image.xyz(size, size).cast("float")
+    x, y = xy[0], xy[1]
+    gx = (x / 37.0).sin() * 0.5 + (y / 91.0).cos() * 0.2
+    gy = (y / 53.0).sin() * 0.4 + (x / 71.0).cos() * 0.2
+    norm = (gx * gx + gy * gy + 1.0) ** 0.5
+    nx, ny, nz = -gx / norm, -gy / norm, 1.0 / norm
+    albedo = ((x / 113.0).sin() * 0.15 + 0.55).bandjoin([(y / 97.0).cos() * 0.1 + 0.5,
+                                                         (x / 61.0 + y / 83.0).sin() * 0.1 + 0.4])
+    rows = [str(n)]
+    for i, (lx, ly, lz) in enumerate(lights(n)):
+        cos = (nx * lx + ny * ly + nz * lz).cast("float")
+        cos = (cos > 0).ifthenelse(cos, 0.0)
+        hx, hy, hz = np.array([lx, ly, lz + 1.0]) / np.linalg.norm([lx, ly, lz + 1.0])
+        nh = (nx * hx + ny * hy + nz * hz)
+        nh = (nh > 0).ifthenelse(nh, 0.0)
+        spec = (nh ** 60) * 0.25
+        img = (albedo * cos + spec) * 255.0
+        name = f"img_{i:03d}.jpg"
+        img.cast("uchar").copy(interpretation="srgb").jpegsave(str(folder / name), Q=90)
+        rows.append(f"{name} {lx:.6f} {ly:.6f} {lz:.6f}")
+    (folder / "lights.lp").write_text("\n".join(rows) + "\n")
+    return folder / "lights.lp"
+
+
+def _bare_decode(files: list[Path]) -> None:
+    for f in files:
+        pyvips.Image.new_from_file(str(f), access="sequential").avg()
+
+
+def _read_pass(files: list[Path], rows: int) -> None:
+    from lanterna.tiler.stack import StackReader
+
+    reader = StackReader(files)
+    for y0 in range(0, reader.shape[1], rows):
+        reader[:, y0:y0 + rows]
+
+
+def _fit(files: list[Path], lts: np.ndarray, key: str, held: int, scratch: Path) -> None:
+    from lanterna.tiler.fit_engine import fit_stream
+    from lanterna.tiler.stack import StackReader
+
+    out = Path(tempfile.mkdtemp(dir=scratch))
+    try:
+        fit_stream(StackReader(files), lts, [key], out, holdout_every=held)
+    finally:
+        shutil.rmtree(out)
+
+
+def throughput(args: argparse.Namespace) -> dict[str, Any]:
+    from lanterna.tiler.fit_engine import auto_band_rows
+    from lanterna.tiler.lp import read_lp
+
+    work = Path(tempfile.mkdtemp(prefix="lanterna-bench-fit-", dir=args.tmp))
+    try:
+        t0 = time.perf_counter()
+        lp = make_stack(work / "shots", args.size, args.lights)
+        made = time.perf_counter() - t0
+        files, lts = read_lp(lp, lp.parent)
+        rows = auto_band_rows(len(files), args.size)
+        held = 10 if len(files) >= 20 else 0
+        cases: dict[str, Any] = {"decode (libvips)": lambda: _bare_decode(files),
+                                 "read pass (decode + float bands)": lambda: _read_pass(files,
+                                                                                        rows)}
+        for key in args.models:
+            cases[f"{key}"] = (lambda k=key: _fit(files, lts, k, 0, work))
+            if held:
+                cases[f"{key} + leave-one-out"] = (lambda k=key: _fit(files, lts, k, held, work))
+        times: dict[str, list[float]] = {name: [] for name in cases}
+        for r in range(args.rounds):
+            for name, run in cases.items():
+                t = time.perf_counter()
+                run()
+                times[name].append(time.perf_counter() - t)
+                print(f"round {r + 1}: {name}: {times[name][-1]:.2f} s", flush=True)
+        mpx = len(files) * args.size * args.size / 1e6
+        base = statistics.median(times["decode (libvips)"])
+        result = {"size": args.size, "lights": len(files), "bandRows": rows,
+                  "stackMegapixels": round(mpx, 1), "makeSeconds": round(made, 1),
+                  "rounds": args.rounds, "cases": {}}
+        for name, ts in times.items():
+            med = statistics.median(ts)
+            result["cases"][name] = {"seconds": [round(t, 3) for t in ts],
+                                     "median": round(med, 3),
+                                     "inputMpxPerSecond": round(mpx / med, 1),
+                                     "vsDecode": round(med / base, 2)}
+        return result
+    finally:
+        shutil.rmtree(work, ignore_errors=True)
+
+
+def memory(args: argparse.Namespace) -> dict[str, Any]:
+    work = Path(tempfile.mkdtemp(prefix="lanterna-bench-fitmem-", dir=args.tmp))
+    try:
+        t0 = time.perf_counter()
+        lp = make_stack(work / "shots", args.size, args.lights)
+        made = time.perf_counter() - t0
+        stack_bytes = sum(f.stat().st_size for f in lp.parent.glob("*.jpg"))
+        cmd = [sys.executable, "-m", "lanterna.cli", "fit", str(lp.parent), "--lp", str(lp),
+               "-o", str(work / "ds"), "--quiet"]
+        for key in args.models:
+            cmd += ["--model", key]
+        before = resource.getrusage(resource.RUSAGE_CHILDREN).ru_maxrss
+        t0 = time.perf_counter()
+        proc = subprocess.run(cmd, capture_output=True, text=True, cwd=REPO)
+        seconds = time.perf_counter() - t0
+        peak_kb = resource.getrusage(resource.RUSAGE_CHILDREN).ru_maxrss
+        if proc.returncode != 0:
+            raise SystemExit(proc.stdout + proc.stderr)
+        out_bytes = sum(p.stat().st_size for p in (work / "ds").rglob("*") if p.is_file())
+        return {"size": args.size, "lights": args.lights, "models": args.models,
+                "gigapixels": round(args.size * args.size / 1e9, 3),
+                "jpegStackGB": round(stack_bytes / 1e9, 2), "makeSeconds": round(made, 1),
+                "fitSeconds": round(seconds, 1), "peakRssMB": round(max(peak_kb, before) / 1024),
+                "datasetGB": round(out_bytes / 1e9, 2), "stdout": proc.stdout.strip()}
+    finally:
+        shutil.rmtree(work, ignore_errors=True)
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__,
+                                     formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument("what", choices=["throughput", "memory"])
+    parser.add_argument("--size", type=int, help="image side (4096 / 32768)")
+    parser.add_argument("--lights", type=int, help="images in the stack (24 / 8)")
+    parser.add_argument("--model", dest="models", action="append",
+                        help="models (default ptm, ptm-lrgb, hsh, normals, ward / ptm-lrgb, "
+                             "normals)")
+    parser.add_argument("--rounds", type=int, default=3)
+    parser.add_argument("--tmp", default=None, help="scratch folder (needs disk: see docs)")
+    parser.add_argument("--json", type=Path, help="write the result here")
+    args = parser.parse_args()
+    big = args.what == "memory"
+    args.size = args.size or (32768 if big else 4096)
+    args.lights = args.lights or (8 if big else 24)
+    args.models = args.models or (["ptm-lrgb", "normals"] if big else
+                                  ["ptm", "ptm-lrgb", "hsh", "normals", "ward"])
+    result = throughput(args) if args.what == "throughput" else memory(args)
+    result["machine"] = {"cpus": os.cpu_count(), "python": platform.python_version(),
+                         "libvips": f"{pyvips.version(0)}.{pyvips.version(1)}."
+                                    f"{pyvips.version(2)}",
+                         "numpy": np.__version__, "platform": platform.platform()}
+    text = json.dumps(result, indent=2)
+    print(text)
+    if args.json:
+        args.json.write_text(text + "\n")
+
+
+if __name__ == "__main__":
+    main()
