@@ -17,6 +17,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Callable, Iterable, Iterator, Sequence
+from concurrent.futures import ThreadPoolExecutor
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any, BinaryIO, Protocol
@@ -228,8 +229,7 @@ def fit_stream(images: Images, lights: Lights, keys: Sequence[str], scratch: Pat
     spans = [(y0, min(h, y0 + rows)) for y0 in range(0, h, rows)]
     step = _Step(full, loo, held, train, layers)
     if runner is None:
-        results: Iterable[_StepResult] = (step(np.asarray(images[:, y0:y1], np.float32))
-                                          for y0, y1 in spans)
+        results: Iterable[_StepResult] = (step(band) for band in _prefetched(images, spans))
     else:
         results = runner.bands(images, spans, step)
     for (_, y1), (outs, band_sse) in zip(spans, results, strict=True):
@@ -248,6 +248,24 @@ def fit_stream(images: Images, lights: Lights, keys: Sequence[str], scratch: Pat
                       "meanPsnr": round(float(np.mean(scores)), 3),
                       "medianPsnr": round(float(np.median(scores)), 3)}
     return FitResult(fitted, quality, rows)
+
+
+def _prefetched(images: Images, spans: Sequence[tuple[int, int]]
+                ) -> Iterator[npt.NDArray[np.float32]]:
+    """Yield the bands in order, reading the next one in a thread while this one is solved.
+
+    libvips decodes without the GIL, so decoding overlaps the numpy work; two bands are held.
+    """
+    def read(span: tuple[int, int]) -> npt.NDArray[np.float32]:
+        return np.asarray(images[:, span[0]:span[1]], np.float32)
+
+    with ThreadPoolExecutor(max_workers=1, thread_name_prefix="lanterna-read") as pool:
+        ahead = pool.submit(read, spans[0]) if spans else None
+        for i in range(len(spans)):
+            assert ahead is not None
+            band = ahead.result()
+            ahead = pool.submit(read, spans[i + 1]) if i + 1 < len(spans) else None
+            yield band
 
 
 class _Sinks:
