@@ -27,7 +27,7 @@ import numpy.typing as npt
 
 from . import fit_bands as fb
 from .hsh_fit import hsh_design_matrix, hsh_quantisation, hsh_quantize
-from .layers import encode_normals, ptm_plane_layer
+from .layers import SVBRDF_MAPS, encode_normals, ptm_plane_layer
 from .planes import PlaneData, PlaneGroup, PlaneLayer
 from .progress import Progress
 from .ptm_fit import ptm_design_matrix, ptm_quantisation, ptm_quantize
@@ -372,15 +372,11 @@ def _to8(values: npt.NDArray[np.generic]) -> npt.NDArray[np.uint8]:
     return out
 
 
-_SVBRDF = {"normals": (["NX", "NY", "NZ"], [2.0] * 3, [0.5] * 3),
-           "kd": (["KD_R", "KD_G", "KD_B"], [1.0] * 3, [0.0] * 3),
-           "ks": (["KS_R", "KS_G", "KS_B"], [1.0] * 3, [0.0] * 3),
-           "gloss": (["GLOSS"], [1.0], [0.0])}
-
-
 def _svbrdf(maps: list[tuple[str, BandImage]], space: str) -> PlaneLayer:
     """A shape + material layer from fitted maps (as :func:`~.layers.add_svbrdf_layer`)."""
-    groups = [PlaneGroup(_SVBRDF[name][0], data, _SVBRDF[name][1], _SVBRDF[name][2])
-              for name, data in maps]
+    groups = []
+    for name, data in maps:
+        channels, scale, bias = SVBRDF_MAPS[name]
+        groups.append(PlaneGroup(channels, data, scale, bias))
     return PlaneLayer("svbrdf", groups, group_names=[name for name, _ in maps],
                       extra={"glossLimits": list(GLOSS_LIMITS), "inputColorSpace": space})

@@ -154,6 +154,15 @@ def encode_normals(normals: npt.NDArray[np.floating]) -> npt.NDArray[np.uint8]:
     return _to_bytes((np.asarray(normals, np.float32) + 1.0) * 0.5)
 
 
+#: The svbrdf maps: channels, scale and bias of each (docs/dataset-format.md).
+SVBRDF_MAPS: dict[str, tuple[list[str], list[float], list[float]]] = {
+    "normals": (["NX", "NY", "NZ"], [2.0] * 3, [0.5] * 3),
+    "kd": (["KD_R", "KD_G", "KD_B"], [1.0] * 3, [0.0] * 3),
+    "ks": (["KS_R", "KS_G", "KS_B"], [1.0] * 3, [0.0] * 3),
+    "gloss": (["GLOSS"], [1.0], [0.0]),
+}
+
+
 def add_svbrdf_layer(
     ds: DatasetWriter,
     *,
@@ -192,12 +201,9 @@ def add_svbrdf_layer(
     if not 0.0 < lo <= hi:
         raise ValueError(f"glossLimits must satisfy 0 < min <= max, got {gloss_limits}")
     maps: list[tuple[str, npt.NDArray[np.uint8] | None, list[str], list[float], list[float]]] = [
-        ("normals", normals, ["NX", "NY", "NZ"], [2.0] * 3, [0.5] * 3),
-        ("kd", kd, ["KD_R", "KD_G", "KD_B"], [1.0] * 3, [0.0] * 3),
-        ("ks", ks, ["KS_R", "KS_G", "KS_B"], [1.0] * 3, [0.0] * 3),
-        ("gloss", gloss, ["GLOSS"], [1.0], [0.0]),
-        ("depth", depth, ["DEPTH"], *_range_quantisation(depth_range)),
-    ]
+        (name, data, *SVBRDF_MAPS[name])
+        for name, data in (("normals", normals), ("kd", kd), ("ks", ks), ("gloss", gloss))
+    ] + [("depth", depth, ["DEPTH"], *_range_quantisation(depth_range))]
     groups: list[PlaneGroup] = []
     names: list[str] = []
     shared: dict[int, str] = {}
