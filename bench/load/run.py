@@ -13,6 +13,10 @@ the next count):
     same gunicorn server; skipped (reported missing) when that server's info.json is not there.
     ``--dynamic-urls FILE`` replaces the generated list by any list of paths.
 
+``wsgi-floor`` (diagnostic, not in the default targets)
+    The same files through a bare WSGI app (``floor_app.py``) under gunicorn with the same
+    settings: what Python HTTP serving costs per tile without Flask.
+
 Load generator: ``wrk`` with ``bench/load/urls.lua`` cycling through every tile URL of the image
 (each wrk thread at another offset). Each run is bounded by ``--duration`` seconds and, with
 ``--max-requests``, by a request count. Client and server CPU are recorded so a saturated client
@@ -47,7 +51,7 @@ from lanterna.tiler.pyramid import write_pyramid
 from lanterna.tiler.tiff import write_tiff
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
-from servers import Gunicorn, Nginx, Server, cpu_seconds, version  # noqa: E402
+from servers import Gunicorn, Nginx, Server, WsgiFloor, cpu_seconds, version  # noqa: E402
 
 HERE = Path(__file__).resolve().parent
 DATASET, IMAGE = "load", "img"
@@ -129,6 +133,11 @@ def _children_cpu() -> float:
     return ru.ru_utime + ru.ru_stime
 
 
+def _server_of(target: str) -> str:
+    """The server a target's requests go to (dynamic requests go to lanterna's gunicorn)."""
+    return "gunicorn" if target == "dynamic" else target
+
+
 def main() -> None:
     p = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     p.add_argument("--work", type=Path, default=Path("/var/tmp/lanterna-load"),
@@ -159,7 +168,7 @@ def main() -> None:
         requests = tile_requests(width, height, args.tile_size)
         lists = {"gunicorn": [f"/datasets/{DATASET}/iiif/{IMAGE}/{r}/0/default.jpg"
                               for r in requests]}
-        lists["nginx"] = lists["gunicorn"]
+        lists["nginx"] = lists["wsgi-floor"] = lists["gunicorn"]
         lists["dynamic"] = ([line for line in args.dynamic_urls.read_text().splitlines() if line]
                             if args.dynamic_urls else
                             [f"/iiif/3/{DATASET}/{IMAGE}/{r}/0/default.jpg" for r in requests])
@@ -173,9 +182,12 @@ def main() -> None:
                                            work / "gunicorn.log")
         if "nginx" in targets:
             servers["nginx"] = Nginx(root, work / "nginx", work / "nginx.log")
+        if "wsgi-floor" in targets:
+            servers["wsgi-floor"] = WsgiFloor(root, args.workers, args.threads,
+                                              work / "wsgi-floor.log")
         missing = {}
         for name in targets:
-            server = servers["nginx" if name == "nginx" else "gunicorn"]
+            server = servers[_server_of(name)]
             try:
                 bodies = [check(server.url + path) for path in lists[name][::97]]
             except (OSError, RuntimeError) as err:
@@ -189,12 +201,12 @@ def main() -> None:
             assert check(servers["gunicorn"].url + sample) == check(servers["nginx"].url + sample)
         live = [t for t in targets if t not in missing]
         for name in live:  # warm the page cache and the workers
-            run_wrk(servers["nginx" if name == "nginx" else "gunicorn"], files[name], 16,
+            run_wrk(servers[_server_of(name)], files[name], 16,
                     args.warmup, 0)
         points: list[dict[str, Any]] = []
         for clients in (int(c) for c in args.clients.split(",")):
             for name in live:
-                server = servers["nginx" if name == "nginx" else "gunicorn"]
+                server = servers[_server_of(name)]
                 point = {"target": name, **run_wrk(server, files[name], clients, args.duration,
                                                    args.max_requests)}
                 points.append(point)
@@ -225,6 +237,8 @@ def summarize(points: list[dict[str, Any]], args: argparse.Namespace, missing: d
             row["dynamic/nginx"] = at["dynamic"] / at["nginx"]
         if "dynamic" in at and "gunicorn" in at:
             row["dynamic/gunicorn"] = at["dynamic"] / at["gunicorn"]
+        if "wsgi-floor" in at and "nginx" in at:
+            row["wsgi-floor/nginx"] = at["wsgi-floor"] / at["nginx"]
         ratios[str(clients)] = row
     for name, row in ratios.items():
         print(f"c={name}: " + ", ".join(f"{k} {v:.2f}" for k, v in row.items()))

@@ -104,6 +104,21 @@ class Gunicorn(Server):
         super().__init__(argv, port, log)
 
 
+class WsgiFloor(Server):
+    """``floor_app.py`` (a bare WSGI file server) under gunicorn, ``lanterna serve``'s settings."""
+
+    name = "wsgi-floor"
+
+    def __init__(self, root: Path, workers: int, threads: int | None, log: Path) -> None:
+        port = free_port()
+        argv = [sys.executable, "-m", "gunicorn", "--chdir", str(Path(__file__).parent),
+                "-k", "gthread", "--threads", str(threads or 8), "-w", str(workers),
+                "--keep-alive", "5", "--backlog", "2048", "--no-control-socket",
+                "-b", f"127.0.0.1:{port}", "floor_app:app"]
+        os.environ["FLOOR_ROOT"] = str(root)
+        super().__init__(argv, port, log)
+
+
 def nginx_conf(root: Path, port: int, prefix: Path, workers: str = "auto") -> str:
     """An nginx config serving ``root`` at ``/datasets/`` like ``lanterna serve`` does.
 
