@@ -235,7 +235,12 @@ def _level_from_tiles(out_dir: Path, fmt: str, width: int, height: int, tile_siz
         images = [pyvips.Image.new_from_file(
             str(_tile_file(out_dir, geo.canonical_path(width, height, t), fmt)),
             access="sequential") for t in tiles]
-        return images[0] if len(images) == 1 else pyvips.Image.arrayjoin(images, across=across)
+        if len(images) == 1:
+            return images[0]
+        # arrayjoin's cells are all tile_size square, the smaller edge tiles sitting at their
+        # cells' top left: exactly the level's layout, plus a margin to crop off
+        joined = pyvips.Image.arrayjoin(images, across=across)
+        return joined.crop(0, 0, *geo.level_size(width, height, factor))
 
     return make
 
