@@ -54,8 +54,8 @@ def build_manifest(desc: dict[str, Any]) -> dict[str, Any]:
             id=f"{service_url}/full/max/0/default.jpg",
             type="Image",
             format=_MEDIA_TYPES["jpg"],
-            width=image["width"],
-            height=image["height"],
+            width=image.get("maxWidth", image["width"]),  # full/max of a large image is a
+            height=image.get("maxHeight", image["height"]),  # reduced level (docs/dataset-format)
             label=layer["label"],
         )
         body.add_service(ServiceV3(id=service_url, type="ImageService3", profile="level0"))

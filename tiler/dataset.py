@@ -123,10 +123,12 @@ class DatasetWriter:
                                      f"{vimg.height}, {what} {want_w}x{want_h}")
         (self._tmp / "iiif").mkdir(exist_ok=True)
         service_id = f"{self.dataset_url}/iiif/{identifier}"
-        write_pyramid(vimg, self._tmp / "iiif" / identifier, service_id, fmt=fmt,
-                      tile_size=self.tile_size)
+        info = write_pyramid(vimg, self._tmp / "iiif" / identifier, service_id, fmt=fmt,
+                             tile_size=self.tile_size)
         self.images[identifier] = {"format": fmt, "width": vimg.width, "height": vimg.height,
                                    "bands": vimg.bands}
+        if "maxWidth" in info:  # full/max is a reduced level (large images)
+            self.images[identifier].update(maxWidth=info["maxWidth"], maxHeight=info["maxHeight"])
         if self.tiff:
             (self._tmp / "tiff").mkdir(exist_ok=True)
             write_tiff(vimg, self._tmp / "tiff" / f"{identifier}.tif", fmt=fmt)

@@ -98,11 +98,3 @@ def parse_region_size(width: int, height: int, path: str) -> TileRequest:
     else:
         sw, sh = (int(v) for v in size.split(","))
     return TileRequest(x, y, w, h, sw, sh)
-
-
-def constrained_max(width: int, height: int, limit: int = 65535) -> tuple[int, int]:
-    """Return the size ``max`` stands for when no side may exceed ``limit`` (the JPEG limit)."""
-    if width <= limit and height <= limit:
-        return width, height
-    f = limit / max(width, height)
-    return max(1, math.floor(width * f)), max(1, math.floor(height * f))

@@ -32,6 +32,10 @@ from . import iiif_geometry as geo
 IMAGE_CONTEXT = "http://iiif.io/api/image/3/context.json"
 #: Largest side of the ``sizes`` entries we list (and so must serve as whole images).
 SIZES_LIMIT = 2048
+#: Largest side of ``full/max``: bigger images declare ``maxWidth``/``maxHeight`` = the first
+#: pyramid level within it, so ``max`` is that level (joined from its tiles), not a full-resolution
+#: encode (a 1-gigapixel JPEG nobody should download, costing more than the whole pyramid).
+FULL_MAX_LIMIT = 4096
 JPEG_QUALITY = 90
 
 
@@ -81,20 +85,35 @@ def write_pyramid(
             save["suffix"] = ".png[compression=3]"
         else:
             save["Q"] = JPEG_QUALITY
-        full_max = _FullMax(image, scratch, fmt)
-        full_max.start()
+        factors = geo.scale_factors(width, height, tile_size)
+        cap = full_max_factor(width, height, factors)
+        full_max = _FullMax(image, scratch, fmt) if cap == 1 else None
+        if full_max:
+            full_max.start()
         try:
             image.dzsave(str(scratch / out_dir.name), id="http://lanterna.invalid", **save)
         finally:
-            full_max.join()
-        full_max.raise_error()
+            if full_max:
+                full_max.join()
+        if full_max:
+            full_max.raise_error()
         (scratch / out_dir.name).rename(out_dir)
-        full_max.move_into(out_dir)
+        if full_max:
+            full_max.move_into(out_dir)
     finally:
         shutil.rmtree(scratch, ignore_errors=True)
 
-    factors = geo.scale_factors(width, height, tile_size)
     _complete_tiles(image, out_dir, fmt, tile_size, factors)
+    if cap > 1:
+        make = _level_from_tiles(out_dir, fmt, width, height, tile_size, cap)
+        for ext in sorted({"jpg", fmt}):
+            level = make()  # a fresh sequential read per file
+            assert level is not None
+            target = _tile_file(out_dir, "full/max", ext)
+            if target.exists():
+                target.unlink()  # dzsave's own full/max, if any, is the full resolution
+            target.parent.mkdir(parents=True, exist_ok=True)
+            _save(level, target)
     info = _info_json(width, height, service_id, fmt, tile_size, factors)
     for factor in factors:
         sw, sh = geo.level_size(width, height, factor)
@@ -104,6 +123,14 @@ def write_pyramid(
                                                          tile_size, factor))
     (out_dir / "info.json").write_text(json.dumps(info, indent=2))
     return info
+
+
+def full_max_factor(width: int, height: int, factors: list[int]) -> int:
+    """The scale factor of ``full/max``: 1, or the first level within :data:`FULL_MAX_LIMIT`."""
+    for factor in factors:
+        if max(geo.level_size(width, height, factor)) <= FULL_MAX_LIMIT:
+            return factor
+    return factors[-1]
 
 
 class _FullMax(threading.Thread):
@@ -122,8 +149,8 @@ class _FullMax(threading.Thread):
 
     def run(self) -> None:
         try:
-            w, h = geo.constrained_max(self._image.width, self._image.height)
-            req = geo.TileRequest(0, 0, self._image.width, self._image.height, w, h)
+            w, h = self._image.width, self._image.height
+            req = geo.TileRequest(0, 0, w, h, w, h)
             for target in self._files.values():
                 _render(self._image, req, target)
         except Exception as err:  # handed to the caller's thread by raise_error
@@ -154,7 +181,7 @@ def _info_json(width: int, height: int, service_id: str, fmt: str, tile_size: in
         "width": width,
         "height": height,
     }
-    max_w, max_h = geo.constrained_max(width, height)
+    max_w, max_h = geo.level_size(width, height, full_max_factor(width, height, factors))
     if (max_w, max_h) != (width, height):
         info["maxWidth"], info["maxHeight"] = max_w, max_h
     sizes = [geo.level_size(width, height, f) for f in reversed(factors)]

@@ -66,9 +66,3 @@ def test_osd_paths_match_spec_paths_for_multi_tile_levels() -> None:
     assert osd == spec
     assert "1024,768,512,9/0,0" not in osd  # no empty tiles
     assert "768,768,233,9/233,9" in osd
-
-
-def test_constrained_max_keeps_aspect_past_jpeg_limit() -> None:
-    assert geo.constrained_max(1000, 500) == (1000, 500)
-    w, h = geo.constrained_max(131070, 1000)
-    assert w == 65535 and h == 500

@@ -58,3 +58,24 @@ def test_every_service_in_the_manifest_exists_on_disk(dataset: Path) -> None:
     layer_doc = json.loads((dataset / "layers/ptm.json").read_text())
     assert layer_doc == relight
     assert relight["id"] == "https://example.org/data/obj/layers/ptm.json"
+
+
+def test_large_image_body_has_the_size_of_its_reduced_full_max(tmp_path: Path) -> None:
+    import pyvips
+
+    from lanterna.tiler.layers import add_image_layer
+    from lanterna.tiler.pyramid import FULL_MAX_LIMIT
+
+    w, h = FULL_MAX_LIMIT + 200, 64
+    img = pyvips.Image.black(w, h, bands=3).copy(interpretation="srgb") + 90
+    with DatasetWriter(tmp_path / "big", name="big", label="big", width=w, height=h) as ds:
+        add_image_layer(ds, img.cast("uchar"), layer_id="vis")
+    desc = json.loads((tmp_path / "big" / "lanterna.json").read_text())
+    assert (desc["images"]["vis"]["maxWidth"], desc["images"]["vis"]["maxHeight"]) == (
+        -(-w // 2), h // 2)
+    body = json.loads((tmp_path / "big" / "manifest.json").read_text())[
+        "items"][0]["items"][0]["items"][0]["body"]["items"][0]
+    assert body["id"].endswith("/vis/full/max/0/default.jpg")
+    assert (body["width"], body["height"]) == (-(-w // 2), h // 2)
+    full = pyvips.Image.new_from_file(str(tmp_path / "big/iiif/vis/full/max/0/default.jpg"))
+    assert (full.width, full.height) == (body["width"], body["height"])

@@ -10,7 +10,7 @@ import pyvips
 
 from lanterna.tiler import iiif_geometry as geo
 from lanterna.tiler import pyramid
-from lanterna.tiler.pyramid import vips_from_array, write_pyramid
+from lanterna.tiler.pyramid import FULL_MAX_LIMIT, vips_from_array, write_pyramid
 
 
 def _image(w: int, h: int) -> np.ndarray:
@@ -61,3 +61,24 @@ def test_a_failed_full_max_leaves_nothing(tmp_path: Path, monkeypatch: pytest.Mo
     with pytest.raises(OSError, match="disk full"):
         write_pyramid(vips_from_array(_image(300, 200)), tmp_path / "p", "http://h/p")
     assert list(tmp_path.iterdir()) == []  # no output, no scratch folder
+
+
+@pytest.mark.parametrize("fmt", ["jpg", "png"])
+def test_full_max_of_a_large_image_is_its_first_level_within_the_limit(tmp_path: Path,
+                                                                       fmt: str) -> None:
+    """Past FULL_MAX_LIMIT, ``max`` is a reduced pyramid level, declared by maxWidth/maxHeight."""
+    w, h = FULL_MAX_LIMIT * 2 + 300, 700  # factor 2 is still too wide: factor 4
+    rng = np.random.default_rng(3)
+    img = rng.integers(0, 256, (h // 4 + 1, w // 4 + 1, 3), np.uint8).repeat(4, 0).repeat(4, 1)
+    img = np.ascontiguousarray(img[:h, :w])
+    info = write_pyramid(vips_from_array(img), tmp_path / "p", "http://x/p", fmt=fmt)
+    mw, mh = -(-w // 4), -(-h // 4)
+    assert (info["maxWidth"], info["maxHeight"]) == (mw, mh) and max(mw, mh) <= FULL_MAX_LIMIT
+    for ext in sorted({"jpg", fmt}):
+        full = _pixels(tmp_path / f"p/full/max/0/default.{ext}")
+        assert full.shape == (mh, mw, 3), ext
+    if fmt == "png":  # the level's own tiles, losslessly: equal to the 4x4 block values
+        np.testing.assert_array_equal(_pixels(tmp_path / "p/full/max/0/default.png"),
+                                      img[::4, ::4][:mh, :mw])
+    # every tile a client asks for is still there
+    assert (tmp_path / f"p/0,0,256,256/256,256/0/default.{fmt}").is_file()
