@@ -33,9 +33,10 @@ IMAGE_CONTEXT = "http://iiif.io/api/image/3/context.json"
 #: Largest side of the ``sizes`` entries we list (and so must serve as whole images).
 SIZES_LIMIT = 2048
 #: Largest side of ``full/max``: bigger images declare ``maxWidth``/``maxHeight`` = the first
-#: pyramid level within it, so ``max`` is that level (joined from its tiles), not a full-resolution
-#: encode (a 1-gigapixel JPEG nobody should download, costing more than the whole pyramid).
-FULL_MAX_LIMIT = 4096
+#: pyramid level within it, so ``max`` is that level (the ``sizes`` entry's file, linked), not a
+#: full-resolution encode (a gigapixel JPEG nobody should download, costing more than the whole
+#: pyramid).
+FULL_MAX_LIMIT = SIZES_LIMIT
 JPEG_QUALITY = 90
 
 
@@ -104,16 +105,6 @@ def write_pyramid(
         shutil.rmtree(scratch, ignore_errors=True)
 
     _complete_tiles(image, out_dir, fmt, tile_size, factors)
-    if cap > 1:
-        make = _level_from_tiles(out_dir, fmt, width, height, tile_size, cap)
-        for ext in sorted({"jpg", fmt}):
-            level = make()  # a fresh sequential read per file
-            assert level is not None
-            target = _tile_file(out_dir, "full/max", ext)
-            if target.exists():
-                target.unlink()  # dzsave's own full/max, if any, is the full resolution
-            target.parent.mkdir(parents=True, exist_ok=True)
-            _save(level, target)
     info = _info_json(width, height, service_id, fmt, tile_size, factors)
     for factor in factors:
         sw, sh = geo.level_size(width, height, factor)
@@ -121,6 +112,20 @@ def write_pyramid(
             _ensure(image, out_dir, fmt, geo.TileRequest(0, 0, width, height, sw, sh),
                     f"full/{sw},{sh}", _level_from_tiles(out_dir, fmt, width, height,
                                                          tile_size, factor))
+    if cap > 1:  # full/max is the level `cap`: link its sizes file, encode the other format
+        mw, mh = geo.level_size(width, height, cap)
+        make = _level_from_tiles(out_dir, fmt, width, height, tile_size, cap)
+        for ext in sorted({"jpg", fmt}):
+            target = _tile_file(out_dir, "full/max", ext)
+            target.unlink(missing_ok=True)  # dzsave's own full/max is the full resolution
+            target.parent.mkdir(parents=True, exist_ok=True)
+            same = _tile_file(out_dir, f"full/{mw},{mh}", ext)
+            if same.exists():
+                os.link(same, target)
+            else:
+                level = make()  # a fresh sequential read per file
+                assert level is not None
+                _save(level, target)
     (out_dir / "info.json").write_text(json.dumps(info, indent=2))
     return info
 
