@@ -88,10 +88,11 @@ class _Gunicorn(BaseApplication):  # type: ignore[misc]  # gunicorn ships no typ
 
 
 def run_gunicorn(root: Path, host: str, port: int, workers: int,
-                 threads: int = DEFAULT_THREADS) -> None:
+                 threads: int = DEFAULT_THREADS, config: dict[str, object] | None = None) -> None:
     """Serve the datasets in ``root`` with gunicorn until stopped (SIGINT or SIGTERM).
 
-    Does not return normally: gunicorn's arbiter exits the process when it stops.
+    ``config`` adds app settings (e.g. the ``IIIF_*`` limits).  Does not return normally:
+    gunicorn's arbiter exits the process when it stops.
     """
-    app = create_app({"DATA_ROOT": root})
+    app = create_app({**(config or {}), "DATA_ROOT": root})
     _Gunicorn(app, gunicorn_settings(host, port, workers, threads)).run()

@@ -37,6 +37,25 @@ def _worker_args(p: argparse.ArgumentParser) -> None:
                         "development server)")
     p.add_argument("--threads", type=int, default=None, metavar="T",
                    help="threads per gunicorn worker (default 8; needs --workers)")
+    p.add_argument("--max-size", type=int, default=None, metavar="PX",
+                   help="IIIF image server: largest output width or height (default 16384)")
+    p.add_argument("--max-area", type=float, default=None, metavar="MPX",
+                   help="IIIF image server: largest output area in megapixels (default 16.8)")
+
+
+def _limits(args: argparse.Namespace) -> dict[str, object]:
+    """The IIIF image server's output limits given on the command line (docs/serving.md)."""
+    config: dict[str, object] = {}
+    size, area = getattr(args, "max_size", None), getattr(args, "max_area", None)
+    if size is not None:
+        if size < 1:
+            raise LanternaInputError(None, "--max-size must be at least 1")
+        config["IIIF_MAX_WIDTH"] = config["IIIF_MAX_HEIGHT"] = size
+    if area is not None:
+        if area <= 0:
+            raise LanternaInputError(None, "--max-area must be positive")
+        config["IIIF_MAX_AREA"] = int(area * 1e6)
+    return config
 
 
 def run_serve(args: argparse.Namespace) -> int:
@@ -51,20 +70,22 @@ def run_serve(args: argparse.Namespace) -> int:
         raise LanternaInputError(None, "--workers must be at least 1")
     if threads is not None and (workers is None or threads < 1):
         raise LanternaInputError(None, "--threads needs --workers and must be at least 1")
+    limits = _limits(args)
     url = f"http://{args.host}:{args.port}/"
     for desc in sorted(root.glob("*/lanterna.json")):
         manifest = f"{url}datasets/{desc.parent.name}/manifest.json"
         print(f"  {desc.parent.name}: {url}viewer/?manifest={manifest}")
     if workers is None:
         print(f"Lanterna serving {root} at {url}  (Ctrl-C to stop)", flush=True)
-        create_app({"DATA_ROOT": root}).run(host=args.host, port=args.port, threaded=True)
+        create_app({**limits, "DATA_ROOT": root}).run(host=args.host, port=args.port,
+                                                      threaded=True)
         return 0
     from lanterna.server.wsgi import DEFAULT_THREADS, run_gunicorn
 
     threads = threads or DEFAULT_THREADS
     print(f"Lanterna serving {root} at {url} with gunicorn, {workers} workers × {threads} "
           "threads  (Ctrl-C to stop)", flush=True)
-    run_gunicorn(root, args.host, args.port, workers, threads)
+    run_gunicorn(root, args.host, args.port, workers, threads, limits)
     return 0
 
 

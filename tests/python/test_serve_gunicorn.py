@@ -10,6 +10,7 @@ import socket
 import subprocess
 import sys
 import time
+import urllib.error
 import urllib.request
 from collections.abc import Iterator
 from pathlib import Path
@@ -32,7 +33,7 @@ START_DEADLINE_S = 60
 def root(tmp_path_factory: pytest.TempPathFactory) -> Path:
     root = tmp_path_factory.mktemp("root")
     with DatasetWriter(root / "obj", name="obj", label="Object", width=300, height=200,
-                       base_url="https://example.org/pub") as ds:
+                       base_url="https://example.org/pub", tiff=True) as ds:
         add_ptm_layer(ds, random_ptm(300, 200))
     return root
 
@@ -62,7 +63,7 @@ def server(root: Path) -> Iterator[tuple[subprocess.Popen[str], str]]:
     port = _free_port()
     lanterna = Path(sys.executable).parent / "lanterna"
     proc = subprocess.Popen([str(lanterna), "serve", str(root), "--workers", "2",
-                             "--port", str(port)],
+                             "--port", str(port), "--max-size", "150"],
                             stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
     url = f"http://127.0.0.1:{port}"
     deadline = time.monotonic() + START_DEADLINE_S
@@ -78,7 +79,7 @@ def server(root: Path) -> Iterator[tuple[subprocess.Popen[str], str]]:
     yield proc, url
     if proc.poll() is None:
         proc.kill()
-        proc.wait()
+    proc.communicate()  # reap it and close its pipe
 
 
 def test_gunicorn_serves_info_json_and_tiles(server: tuple[subprocess.Popen[str], str],
@@ -105,6 +106,19 @@ def test_gunicorn_serves_info_json_and_tiles(server: tuple[subprocess.Popen[str]
     while len(_children(proc.pid)) < 2 and time.monotonic() < deadline:
         time.sleep(0.1)
     assert len(_children(proc.pid)) == 2
+
+
+def test_image_server_limits_from_the_command_line(
+        server: tuple[subprocess.Popen[str], str]) -> None:
+    """--max-size reaches the level-1 image server of every gunicorn worker."""
+    _, url = server
+    info = json.loads(_get(f"{url}/iiif/3/obj/ptm_c0/info.json")[2])
+    assert (info["maxWidth"], info["maxHeight"]) == (150, 150)
+    assert _get(f"{url}/iiif/3/obj/ptm_c0/full/120,/0/default.png")[0] == 200
+    with pytest.raises(urllib.error.HTTPError) as err:
+        _get(f"{url}/iiif/3/obj/ptm_c0/0,0,200,100/200,/0/default.png")
+    err.value.close()
+    assert err.value.code == 400
 
 
 def test_gunicorn_stops_cleanly_on_sigterm(server: tuple[subprocess.Popen[str], str]) -> None:
@@ -137,3 +151,4 @@ def test_gunicorn_settings_suit_static_tiles() -> None:
     assert s["keepalive"] > 0 and s["timeout"] > 0 and s["sendfile"] is True
     with pytest.raises(ValueError):
         gunicorn_settings("127.0.0.1", 8000, 0)
+
