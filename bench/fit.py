@@ -174,8 +174,7 @@ def main() -> None:
     parser.add_argument("--size", type=int, help="image side (4096 / 32768)")
     parser.add_argument("--lights", type=int, help="images in the stack (24 / 8)")
     parser.add_argument("--model", dest="models", action="append",
-                        help="models (default ptm, ptm-lrgb, hsh, normals, ward / ptm-lrgb, "
-                             "normals)")
+                        help="models (default: all five / ptm-lrgb for memory)")
     parser.add_argument("--rounds", type=int, default=3)
     parser.add_argument("--tmp", default=None, help="scratch folder (needs disk: see docs)")
     parser.add_argument("--json", type=Path, help="write the result here")
@@ -183,7 +182,7 @@ def main() -> None:
     big = args.what == "memory"
     args.size = args.size or (32768 if big else 4096)
     args.lights = args.lights or (8 if big else 24)
-    args.models = args.models or (["ptm-lrgb", "normals"] if big else
+    args.models = args.models or (["ptm-lrgb"] if big else
                                   ["ptm", "ptm-lrgb", "hsh", "normals", "ward"])
     result = throughput(args) if args.what == "throughput" else memory(args)
     result["machine"] = {"cpus": os.cpu_count(), "python": platform.python_version(),

@@ -160,17 +160,20 @@ class _Spill:
         self.shapes: list[tuple[int, ...]] = []
 
     def append(self, values: npt.NDArray[np.float32]) -> None:
-        axes = tuple(range(values.ndim - 1))
-        lo, hi = values.min(axis=axes), values.max(axis=axes)
+        """Append a band ``(b, …, K)``; stored coefficient-major (``(K, b, …)``), so the solvers'
+        ``(K, pixels)`` products are written without a copy and reduced per row."""
+        km = np.ascontiguousarray(np.moveaxis(values, -1, 0), np.float32)
+        flat = km.reshape(km.shape[0], -1)
+        lo, hi = flat.min(axis=1).astype(np.float64), flat.max(axis=1).astype(np.float64)
         if not (np.all(np.isfinite(lo)) and np.all(np.isfinite(hi))):
             raise ValueError("the fit produced non-finite coefficients")
         self.lo = lo if self.lo is None else np.minimum(self.lo, lo)
         self.hi = hi if self.hi is None else np.maximum(self.hi, hi)
-        self.file.write(np.ascontiguousarray(values, np.float32).tobytes())
-        self.shapes.append(values.shape)
+        self.file.write(km.data)
+        self.shapes.append(km.shape)
 
     def bands(self) -> Any:
-        """Yield the bands back in order (the file is deleted after the last)."""
+        """Yield the bands back in order, ``(K, b, …)`` (the file is deleted after the last)."""
         self.file.close()
         with open(self.path, "rb") as f:
             for shape in self.shapes:
@@ -336,18 +339,19 @@ class _Sinks:
                                       3) for g in names}
         bar = progress(f"quantising {key}", self.height) if progress else None
         done = 0
-        for values in spill.bands():
+        for values in spill.bands():  # (K, b, W[, 3])
+            per_term = (-1,) + (1,) * (values.ndim - 1)
             if key == "hsh":
-                q = hsh_quantize(values, scale, bias)
+                q = hsh_quantize(values, scale.reshape(per_term), bias.reshape(per_term))
                 for t, g in enumerate(names):
-                    writers[g].write(q[..., t])
+                    writers[g].write(q[t])
             else:
-                q = ptm_quantize(values, scale, bias)
+                q = ptm_quantize(values, scale.reshape(per_term), bias.reshape(per_term))
                 for g in names:
                     k = slice(3 * int(g[-1]), 3 * int(g[-1]) + 3)
-                    writers[g].write(q[..., k] if key == "ptm-lrgb" else q[:, :, "rgb".index(
-                        g[0]), k])
-            done += values.shape[0]
+                    part = q[k] if key == "ptm-lrgb" else q[k, :, :, "rgb".index(g[0])]
+                    writers[g].write(np.moveaxis(part, 0, -1))
+            done += values.shape[1]
             if bar:
                 bar.update(done)
         planes = {g: wr.close() for g, wr in writers.items()}

@@ -56,7 +56,7 @@ class StripTiffWriter:
                              f"got {rows.dtype} {rows.shape}")
         if self._rows + arr.shape[0] > self.height:
             raise ValueError(f"more than {self.height} rows written")
-        self._file.write(np.ascontiguousarray(arr).tobytes())
+        self._file.write(np.ascontiguousarray(arr).data)
         self._rows += arr.shape[0]
 
     def close(self) -> BandImage:
