@@ -242,6 +242,8 @@ def fit_stream(images: Images, lights: Lights, keys: Sequence[str], scratch: Pat
             sse[k] += band_sse[k]
         if bar:
             bar.update(y1)
+    if hasattr(images, "close"):
+        images.close()  # the pass is over: free the decoders before quantising and tiling
     space = "linear" if linear else "display"
     fitted = sinks.finish(keys, terms, space, progress) if layers else {}
     quality = {}

@@ -31,9 +31,14 @@ from .planes import PlaneLayer
 from .plans import LayerPlan, build_dataset
 from .progress import Progress
 from .raw import is_raw, raw_to_tiff
-from .stack import StackReader
+from .stack import StackReader, to_tiled_tiff
 
-ProgressFactory = Callable[[str, int], Progress]
+#: Largest memory the open decoders of a collection may hold before the images are re-encoded
+#: as tiled TIFFs (:meth:`~lanterna.tiler.stack.StackReader.decoder_bytes`).
+DECODER_BUDGET = 512 << 20
+
+#: Makes a progress reporter: ``(label, total[, unit])``.
+ProgressFactory = Callable[..., Progress]
 
 
 @dataclass(frozen=True)
@@ -58,6 +63,11 @@ class FusionStack:
     def __init__(self, bands: Sequence[StackReader]) -> None:
         self.bands = list(bands)
         self.shape = self.bands[0].shape
+
+    def close(self) -> None:
+        """Release the bands' decoders."""
+        for band in self.bands:
+            band.close()
 
     def __getitem__(self, key: Any) -> npt.NDArray[np.float32]:
         if not (isinstance(key, tuple) and len(key) == 2 and key[0] == slice(None)):
@@ -193,14 +203,29 @@ def _open_set(s: ImageSet, scratch: Path, progress: ProgressFactory | None
         if not all(raw):
             raise LanternaInputError(s.lp, "a collection must not mix camera RAW files with "
                                      "JPEG/PNG/TIFF images")
-        bar = progress(f"decoding RAW {s.name or ''}".strip(), len(files)) if progress else None
+        bar = (progress(f"decoding RAW {s.name or ''}".strip(), len(files), "images")
+               if progress else None)
         decoded = []
         for i, f in enumerate(files):
             decoded.append(raw_to_tiff(f, scratch / "raw", linear=False))
             if bar:
                 bar.update(i + 1)
         files = decoded
-    return StackReader(files), lights
+    reader = StackReader(files)
+    if reader.decoder_bytes() > DECODER_BUDGET:
+        # wide images: as many open decoders would hold too much; re-encode each (lossless,
+        # tiled) so a band can be read file by file with nothing kept between bands
+        tiled = scratch / "tiled" / (s.name or "images")
+        tiled.mkdir(parents=True, exist_ok=True)
+        bar = progress("tiling inputs " + (s.name or ""), len(files), "images") if progress \
+            else None
+        out = []
+        for i, f in enumerate(files):
+            out.append(to_tiled_tiff(f, tiled / f"{i:05d}.tif"))
+            if bar:
+                bar.update(i + 1)
+        reader = StackReader(out, reopen=True)
+    return reader, lights
 
 
 def _plan(layer: PlaneLayer, lid: str, label: str, source: str) -> LayerPlan:

@@ -23,17 +23,19 @@ import pyvips
 _SHORT, _LONG, _LONG8 = 3, 4, 16
 _TYPE_SIZE = {_SHORT: 2, _LONG: 4, _LONG8: 8}
 _TYPE_CODE = {_SHORT: "H", _LONG: "I", _LONG8: "Q"}
-#: Bytes of one strip (about): libtiff reads whole strips.
-STRIP_BYTES = 1 << 20
+#: Tile side: libvips reads a tiled TIFF tile by tile, for any region (a striped one it may
+#: decode whole for random access).
+TILE = 256
 _HEADER = 16
 
 
 class StripTiffWriter:
-    """Write a ``height × width × bands`` uint8 image top to bottom as a striped BigTIFF.
+    """Write a ``height × width × bands`` uint8 image top to bottom as a tiled BigTIFF.
 
-    ``write(rows)`` appends ``(b, width[, bands])`` rows; ``close()`` checks that every row
-    came, writes the directory and renames the temporary file to ``path``.  On an exception
-    inside a ``with`` block the temporary file is removed and ``path`` is not created.
+    ``write(rows)`` appends ``(b, width[, bands])`` rows (held until a row of 256² tiles is
+    complete: ``256 × width × bands`` bytes); ``close()`` checks that every row came, writes the
+    directory and renames the temporary file to ``path``.  On an exception inside a ``with``
+    block the temporary file is removed and ``path`` is not created.
     """
 
     def __init__(self, path: Path, width: int, height: int, bands: int) -> None:
@@ -45,6 +47,11 @@ class StripTiffWriter:
         self._file = open(self._tmp, "wb")  # noqa: SIM115 - closed in close()/abort()
         self._file.write(b"\0" * _HEADER)
         self._rows = 0
+        # rows wait here until a whole row of tiles can be written
+        self._pending = np.zeros((TILE, self.width, bands), np.uint8)
+        self._filled = 0
+        self._offsets: list[int] = []
+        self._counts: list[int] = []
 
     def write(self, rows: npt.NDArray[np.uint8]) -> None:
         """Append rows: ``(b, width, bands)`` or, for one band, ``(b, width)``."""
@@ -56,26 +63,45 @@ class StripTiffWriter:
                              f"got {rows.dtype} {rows.shape}")
         if self._rows + arr.shape[0] > self.height:
             raise ValueError(f"more than {self.height} rows written")
-        self._file.write(np.ascontiguousarray(arr).data)
+        rows3 = arr.reshape(arr.shape[0], self.width, self.bands)
+        done = 0
+        while done < len(rows3):
+            take = min(TILE - self._filled, len(rows3) - done)
+            self._pending[self._filled:self._filled + take] = rows3[done:done + take]
+            self._filled += take
+            done += take
+            if self._filled == TILE:
+                self._flush()
         self._rows += arr.shape[0]
+
+    def _flush(self) -> None:
+        """Write the pending row of tiles (zero-padded at the right and bottom edges)."""
+        if self._filled < TILE:
+            self._pending[self._filled:] = 0
+        for x0 in range(0, self.width, TILE):
+            tile = np.zeros((TILE, TILE, self.bands), np.uint8)
+            part = self._pending[:, x0:x0 + TILE]
+            tile[:, :part.shape[1]] = part
+            self._offsets.append(self._file.tell())
+            self._counts.append(tile.nbytes)
+            self._file.write(tile.data)
+        self._filled = 0
 
     def close(self) -> BandImage:
         """Finish the file and return it as a :class:`BandImage`."""
         if self._rows != self.height:
             self.abort()
             raise ValueError(f"{self._rows} of {self.height} rows written")
-        row_bytes = self.width * self.bands
-        per_strip = max(1, min(self.height, STRIP_BYTES // row_bytes))
-        starts = range(0, self.height, per_strip)
-        offsets = [_HEADER + y * row_bytes for y in starts]
-        counts = [min(per_strip, self.height - y) * row_bytes for y in starts]
-        ifd_at = _HEADER + self.height * row_bytes
+        if self._filled:
+            self._flush()
+        ifd_at = self._file.tell()
         entries: list[tuple[int, int, list[int]]] = [
             (256, _LONG, [self.width]), (257, _LONG, [self.height]),
             (258, _SHORT, [8] * self.bands), (259, _SHORT, [1]),
-            (262, _SHORT, [2 if self.bands == 3 else 1]), (273, _LONG8, offsets),
-            (277, _SHORT, [self.bands]), (278, _LONG, [per_strip]), (279, _LONG8, counts),
-            (284, _SHORT, [1]), (339, _SHORT, [1] * self.bands),
+            (262, _SHORT, [2 if self.bands == 3 else 1]), (277, _SHORT, [self.bands]),
+            (284, _SHORT, [1]), (322, _LONG, [TILE]), (323, _LONG, [TILE]),
+            (324, _LONG8, self._offsets), (325, _LONG8, self._counts),
+            (339, _SHORT, [1] * self.bands),
         ]
         self._file.write(_directory(entries, ifd_at))
         self._file.seek(0)
@@ -127,19 +153,23 @@ class BandImage:
         self.width, self.height, self.bands = width, height, bands
         self.shape: tuple[int, ...] = (height, width, 3) if bands == 3 else (height, width)
         self.ndim = len(self.shape)
+        self._opened: pyvips.Image | None = None
+
+    def _image(self) -> pyvips.Image:
+        if self._opened is None:  # once: libtiff keeps only the tiles in use
+            self._opened = pyvips.Image.new_from_file(str(self.path), revalidate=True)
+        return self._opened
 
     def vips(self) -> pyvips.Image:
         """The image for libvips, interpreted as sRGB (3 bands) or b-w (1 band)."""
-        img = pyvips.Image.new_from_file(str(self.path), revalidate=True)
-        return img.copy(interpretation="srgb" if self.bands == 3 else "b-w")
+        return self._image().copy(interpretation="srgb" if self.bands == 3 else "b-w")
 
     def rows(self, y0: int, y1: int) -> npt.NDArray[np.uint8]:
         """Rows ``y0:y1`` as ``(b, W, 3)`` or ``(b, W)`` uint8."""
         y0, y1 = max(0, y0), min(self.height, y1)
         if y1 <= y0:
             return np.empty((0, *self.shape[1:]), np.uint8)
-        raw = pyvips.Region.new(pyvips.Image.new_from_file(str(self.path), revalidate=True)).fetch(
-            0, y0, self.width, y1 - y0)
+        raw = pyvips.Region.new(self._image()).fetch(0, y0, self.width, y1 - y0)
         return np.frombuffer(raw, np.uint8).reshape((y1 - y0, *self.shape[1:])).copy()
 
     def __getitem__(self, key: Any) -> npt.NDArray[np.uint8]:

@@ -12,7 +12,8 @@ import numpy.typing as npt
 import pytest
 import pyvips
 
-from lanterna.tiler import layers
+from lanterna.tiler import fit_run, layers
+from lanterna.tiler import stack as stack_module
 from lanterna.tiler.dataset import DatasetWriter
 from lanterna.tiler.errors import LanternaInputError
 from lanterna.tiler.fit import model_table
@@ -197,3 +198,29 @@ def test_lanterna_fit_planes_equal_the_in_memory_fits(
         streamed = (ds / "iiif" / image / "full/max/0/default.jpg").read_bytes()
         assert streamed == (tmp_path / "mem" / "iiif" / image / "full/max/0/default.jpg"
                             ).read_bytes(), image
+
+
+def test_wide_collections_are_read_from_tiled_copies_with_the_same_result(
+        collection: tuple[list[Path], npt.NDArray[np.float64]], tmp_path: Path,
+        monkeypatch: pytest.MonkeyPatch) -> None:
+    """Past the decoder budget the images are re-encoded as tiled TIFFs and read file by file
+    per band (nothing kept between bands): the planes are unchanged."""
+    files, lights = collection
+    lp = files[0].parent / "lights.lp"
+    lp.write_text(f"{len(files)}\n" + "".join(
+        f"{f.name} {x:.9f} {y:.9f} {z:.9f}\n" for f, (x, y, z) in zip(files, lights, strict=True)))
+    reader = StackReader(files)
+    assert reader.decoder_bytes() == N * W * stack_module.DECODER_BYTES_PER_COLUMN
+    fit_collection(files[0].parent, lp, ["ptm", "normals"], tmp_path / "direct", band_rows=BAND)
+    made: list[Path] = []
+    real = stack_module.to_tiled_tiff
+    monkeypatch.setattr(fit_run, "DECODER_BUDGET", reader.decoder_bytes() - 1)
+    monkeypatch.setattr(fit_run, "to_tiled_tiff", lambda p, o: made.append(o) or real(p, o))
+    fit_collection(files[0].parent, lp, ["ptm", "normals"], tmp_path / "tiled", band_rows=BAND)
+    assert len(made) == N and all(not p.exists() for p in made)  # in the removed scratch
+    for image in ("ptm_r0", "ptm_g1", "ptm_b0", "normals_normals", "normals_kd"):
+        assert np.array_equal(_plane(tmp_path / "direct", image), _plane(tmp_path / "tiled", image))
+    tiled = StackReader([stack_module.to_tiled_tiff(f, tmp_path / f"{i}.tif")
+                         for i, f in enumerate(files[:3])], reopen=True)
+    assert tiled.decoder_bytes() == 0
+    assert np.array_equal(tiled[:, 500:537], load_stack(files[:3])[:, 500:537])
