@@ -153,12 +153,11 @@ class BandImage:
         self.width, self.height, self.bands = width, height, bands
         self.shape: tuple[int, ...] = (height, width, 3) if bands == 3 else (height, width)
         self.ndim = len(self.shape)
-        self._opened: pyvips.Image | None = None
 
     def _image(self) -> pyvips.Image:
-        if self._opened is None:  # once: libtiff keeps only the tiles in use
-            self._opened = pyvips.Image.new_from_file(str(self.path), revalidate=True)
-        return self._opened
+        # opened afresh for each use: caches libvips attaches while an image is read (the
+        # pyramid writer's, the tiles of a long read) go when that use ends
+        return pyvips.Image.new_from_file(str(self.path), revalidate=True)
 
     def vips(self) -> pyvips.Image:
         """The image for libvips, interpreted as sRGB (3 bands) or b-w (1 band)."""
