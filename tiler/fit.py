@@ -24,8 +24,8 @@ from .fit_engine import fit_stream
 from .hsh_basis import hsh_weights
 from .hsh_fit import fit_hsh
 from .hsh_model import HSH_TERMS, Hsh
-from .normals_fit import RANK_WINDOW, SHADOW_FRACTION
-from .ptm_fit import fit_ptm_lrgb, ptm_design_matrix, quantize_coefficients
+from .normals_fit import RANK_WINDOW, SHADOW_FRACTION, check_lights
+from .ptm_fit import fit_ptm_lrgb, ptm_design_matrix, ptm_pinv, quantize_coefficients
 from .ptm_model import Ptm
 from .stack import StackReader
 from .ward_fit import Ward, fit_ward, predict_ward, quantize_ward
@@ -71,8 +71,7 @@ def fit_normals(images: Images, lights: Lights, *, rank_window: tuple[float, flo
     n, h, w, _ = images.shape
     if lights.shape != (n, 3):
         raise ValueError(f"{n} images but lights of shape {lights.shape}")
-    if n < 3 or np.linalg.matrix_rank(lights) < 3:
-        raise ValueError("photometric stereo needs at least 3 non-coplanar lights")
+    check_lights(lights)
     normals = np.empty((h, w, 3), np.float32)
     albedo = np.empty((h, w, 3), np.float32)
     for y0 in range(0, h, band_rows):
@@ -93,9 +92,7 @@ def fit_ptm_rgb(images: Images, lights: Lights, *, band_rows: int = 64) -> Ptm:
     n, h, w, _ = images.shape
     if basis.shape[0] != n:
         raise ValueError(f"{n} images but {basis.shape[0]} lights")
-    if n < 6 or np.linalg.matrix_rank(basis) < 6:
-        raise ValueError("the light directions do not determine the 6 PTM terms")
-    pinv = (np.linalg.pinv(basis) * 255.0).astype(np.float32)  # (6, N)
+    pinv = (ptm_pinv(basis) * 255.0).astype(np.float32)  # (6, N)
     coeffs = np.empty((h, w, 3, 6), np.float32)
     for y0 in range(0, h, band_rows):
         coeffs[y0:y0 + band_rows] = ptm_rgb_band(images[:, y0:y0 + band_rows], pinv)["coeffs"]

@@ -26,11 +26,12 @@ import numpy as np
 import numpy.typing as npt
 
 from . import fit_bands as fb
-from .hsh_fit import hsh_design_matrix, hsh_quantisation, hsh_quantize
+from .hsh_fit import hsh_design_matrix, hsh_pinv, hsh_quantisation, hsh_quantize
 from .layers import SVBRDF_MAPS, encode_normals, ptm_plane_layer
+from .normals_fit import check_lights
 from .planes import PlaneData, PlaneGroup, PlaneLayer
 from .progress import Progress
-from .ptm_fit import ptm_design_matrix, ptm_quantisation, ptm_quantize
+from .ptm_fit import ptm_design_matrix, ptm_pinv, ptm_quantisation, ptm_quantize
 from .render.shading import linear_to_srgb, srgb_to_linear
 from .stack import StackReader
 from .strip_tiff import BandImage, StripTiffWriter
@@ -61,24 +62,22 @@ class _Solver:
     pinv: dict[str, npt.NDArray[np.float32]] = field(default_factory=dict)
 
     def __post_init__(self) -> None:
-        n = len(self.lights)
-        if {"ptm", "ptm-lrgb"} & set(self.keys):
-            basis = ptm_design_matrix(self.lights)
-            if n < 6 or np.linalg.matrix_rank(basis) < 6:
+        keys = set(self.keys)
+        key = next(iter(self.keys), "")
+        try:
+            if {"ptm", "ptm-lrgb"} & keys:
                 key = next(k for k in self.keys if k.startswith("ptm"))
-                raise ValueError(f"{key}: the light directions do not determine the 6 PTM terms")
-            self.pinv["ptm-lrgb"] = np.linalg.pinv(basis).astype(np.float32)
-            self.pinv["ptm"] = (np.linalg.pinv(basis) * 255.0).astype(np.float32)
-        if "hsh" in self.keys:
-            hbasis = hsh_design_matrix(self.lights, self.terms)
-            if n < self.terms or np.linalg.matrix_rank(hbasis) < self.terms:
-                raise ValueError(f"hsh: the lights do not determine {self.terms} HSH terms")
-            self.pinv["hsh"] = np.linalg.pinv(hbasis.astype(np.float64)).astype(np.float32)
-        if {"normals", "ward"} & set(self.keys):
-            if n < 3 or np.linalg.matrix_rank(self.lights) < 3:
-                key = "normals" if "normals" in self.keys else "ward"
-                raise ValueError(f"{key}: photometric stereo needs at least 3 non-coplanar "
-                                 "lights")
+                pinv = ptm_pinv(ptm_design_matrix(self.lights))
+                self.pinv["ptm-lrgb"] = pinv.astype(np.float32)
+                self.pinv["ptm"] = (pinv * 255.0).astype(np.float32)
+            if "hsh" in keys:
+                key = "hsh"
+                self.pinv["hsh"] = hsh_pinv(hsh_design_matrix(self.lights, self.terms), self.terms)
+            if {"normals", "ward"} & keys:
+                key = "normals" if "normals" in keys else "ward"
+                check_lights(self.lights)
+        except ValueError as err:
+            raise ValueError(f"{key}: {err}") from None
 
     def solve(self, band: npt.NDArray[np.float32]) -> dict[str, fb.Out]:
         """Every requested model's float outputs for one band (all of this solver's lights)."""

@@ -20,6 +20,20 @@ def hsh_design_matrix(lights: npt.ArrayLike, terms: int) -> npt.NDArray[np.float
     return np.stack([hsh_weights(float(x), float(y), terms) for x, y, _ in lv])
 
 
+def hsh_pinv(basis: npt.NDArray[np.floating], terms: int) -> npt.NDArray[np.float32]:
+    """Return the ``(terms, N)`` pseudo-inverse (float32) of an HSH design matrix.
+
+    Raises
+    ------
+    ValueError
+        If the lights do not determine ``terms`` terms (too few, or rank too low).
+    """
+    if basis.shape[0] < terms or np.linalg.matrix_rank(basis) < terms:
+        raise ValueError(f"the lights do not determine {terms} HSH terms")
+    pinv: npt.NDArray[np.float32] = np.linalg.pinv(basis.astype(np.float64)).astype(np.float32)
+    return pinv
+
+
 def fit_hsh(images: npt.NDArray[np.uint8] | npt.NDArray[np.floating] | StackReader,
             lights: npt.ArrayLike,
             terms: int = 9, *, band_rows: int = 64) -> Hsh:
@@ -49,9 +63,7 @@ def fit_hsh(images: npt.NDArray[np.uint8] | npt.NDArray[np.floating] | StackRead
     basis = hsh_design_matrix(lights, terms)
     if basis.shape[0] != stack.shape[0]:
         raise ValueError(f"{stack.shape[0]} images but {basis.shape[0]} lights")
-    if basis.shape[0] < terms or np.linalg.matrix_rank(basis) < terms:
-        raise ValueError(f"the lights do not determine {terms} HSH terms")
-    pinv = np.linalg.pinv(basis.astype(np.float64)).astype(np.float32)  # (terms, N)
+    pinv = hsh_pinv(basis, terms)  # (terms, N), computed once
     scale_in = np.float32(1 / 255) if stack.dtype == np.uint8 else np.float32(1)
     n, h, w, _ = stack.shape
     coeffs = np.empty((h, w, 3, terms), np.float32)

@@ -121,6 +121,14 @@ def solve_normals_band(lum: F64, colour: npt.NDArray[np.floating], lights: F64, 
     return normals, albedo
 
 
+def check_lights(lights: npt.ArrayLike) -> F64:
+    """Return ``lights`` ``(N, 3)`` as float64 if they determine a normal, else ValueError."""
+    lf = np.asarray(lights, np.float64)
+    if len(lf) < 3 or not np.all(np.isfinite(lf)) or np.linalg.matrix_rank(lf) < 3:
+        raise ValueError("photometric stereo needs at least 3 finite, non-coplanar lights")
+    return lf
+
+
 def _check(lum: F64, colour: npt.NDArray[np.floating], lights: F64,
            rank_window: tuple[float, float], shadow: float, iterations: int, estimator: str,
            tuning: float | None, tol: float, scale_floor: float) -> F64:
@@ -132,9 +140,7 @@ def _check(lum: F64, colour: npt.NDArray[np.floating], lights: F64,
         raise ValueError(f"colour must be {(n, p, 3)} to match lum, got {colour.shape}")
     if lights.shape != (n, 3):
         raise ValueError(f"{n} samples per pixel but lights of shape {lights.shape}")
-    lf = np.asarray(lights, np.float64)
-    if n < 3 or not np.all(np.isfinite(lf)) or np.linalg.matrix_rank(lf) < 3:
-        raise ValueError("photometric stereo needs at least 3 finite, non-coplanar lights")
+    lf = check_lights(lights)
     lo, hi = rank_window
     if not 0.0 <= lo < hi <= 1.0:
         raise ValueError(f"rank_window must satisfy 0 <= lo < hi <= 1, got {rank_window}")

@@ -17,7 +17,7 @@ from .fit_bands import LUMINANCE_WEIGHTS, ptm_lrgb_band
 from .ptm_model import Ptm
 from .stack import StackReader
 
-__all__ = ["LUMINANCE_WEIGHTS", "fit_ptm_lrgb", "ptm_design_matrix", "ptm_quantisation",
+__all__ = ["LUMINANCE_WEIGHTS", "fit_ptm_lrgb", "ptm_design_matrix", "ptm_pinv", "ptm_quantisation",
            "ptm_quantize", "quantize_coefficients"]
 
 #: Default number of image rows processed at once.
@@ -54,6 +54,20 @@ def ptm_design_matrix(lights: npt.ArrayLike) -> npt.NDArray[np.float64]:
     u = lv[:, 0] / norm
     v = lv[:, 1] / norm
     return np.stack([u * u, v * v, u * v, u, v, np.ones_like(u)], axis=1)
+
+
+def ptm_pinv(basis: npt.NDArray[np.float64]) -> npt.NDArray[np.float64]:
+    """Return the ``(6, N)`` pseudo-inverse of a PTM design matrix (:func:`ptm_design_matrix`).
+
+    Raises
+    ------
+    ValueError
+        If the lights do not determine the six terms (fewer than 6, or rank below 6).
+    """
+    if basis.shape[0] < 6 or np.linalg.matrix_rank(basis) < 6:
+        raise ValueError("the light directions do not determine the 6 PTM terms")
+    pinv: npt.NDArray[np.float64] = np.asarray(np.linalg.pinv(basis), np.float64)
+    return pinv
 
 
 def quantize_coefficients(
@@ -172,12 +186,10 @@ def fit_ptm_lrgb(
         raise ValueError(f"got {n} images but {basis.shape[0]} lights")
     if n < 6:
         raise ValueError(f"a PTM needs at least 6 lights, got {n}")
-    if np.linalg.matrix_rank(basis) < 6:
-        raise ValueError("the light directions do not determine the 6 PTM terms")
     if band_rows < 1:
         raise ValueError(f"band_rows must be at least 1, got {band_rows}")
 
-    pinv = np.linalg.pinv(basis).astype(np.float32)  # (6, N), computed once
+    pinv = ptm_pinv(basis).astype(np.float32)  # (6, N), computed once
     coeffs = np.empty((height, width, 6), dtype=np.float32)
     rgb = np.empty((height, width, 3), dtype=np.uint8)
     for r0 in range(0, height, band_rows):
