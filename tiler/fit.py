@@ -21,14 +21,13 @@ import numpy.typing as npt
 from .errors import LanternaInputError
 from .fit_bands import normals_band, ptm_rgb_band
 from .fit_engine import fit_stream
-from .hsh_basis import hsh_weights
 from .hsh_fit import fit_hsh
-from .hsh_model import HSH_TERMS, Hsh
+from .hsh_model import HSH_TERMS
 from .normals_fit import RANK_WINDOW, SHADOW_FRACTION, check_lights
 from .ptm_fit import fit_ptm_lrgb, ptm_design_matrix, ptm_pinv, quantize_coefficients
 from .ptm_model import Ptm
 from .stack import StackReader
-from .ward_fit import Ward, fit_ward, predict_ward, quantize_ward
+from .ward_fit import Ward, fit_ward, quantize_ward
 
 Stack = npt.NDArray[np.float32]
 #: An in-memory stack or one read from disk in row bands.
@@ -100,28 +99,9 @@ def fit_ptm_rgb(images: Images, lights: Lights, *, band_rows: int = 64) -> Ptm:
     return Ptm(colorspace="rgb", coefficients=q, scale=scale, bias=bias)
 
 
-def predict_normals(model: Normals, light: npt.NDArray[np.float64]) -> Stack:
-    """Return the Lambert image ``albedo · max(0, n·l)`` under unit ``light``, clipped to 0–1."""
-    shade = np.maximum(model.normals @ light.astype(np.float32), 0.0)
-    out: Stack = np.clip(model.albedo * shade[..., None], 0.0, 1.0)
-    return out
-
-
-def predict_ptm(model: Ptm, light: npt.NDArray[np.float64]) -> Stack:
-    """Return the (quantised) PTM relit under unit ``light``, 0–1."""
-    return model.relight(float(light[0]), float(light[1]))
-
-
-def predict_hsh(model: Hsh, light: npt.NDArray[np.float64]) -> Stack:
-    """Return the (quantised) HSH relit under unit ``light``, clipped to 0–1."""
-    wts = hsh_weights(float(light[0]), float(light[1]), model.terms)
-    out: Stack = np.clip(model.dequantized() @ wts, 0.0, 1.0).astype(np.float32)
-    return out
-
-
 @dataclass(frozen=True)
 class Model:
-    """One fittable model: its layer id, label, fit and predict functions, and its layer.
+    """One fittable model: its CLI name, layer id, label and in-memory fit function.
 
     ``key`` is its CLI name (a :data:`~lanterna.tiler.fit_engine.MODEL_KEYS` entry), ``terms``
     the HSH term count.
@@ -132,7 +112,6 @@ class Model:
     id: str
     label: str
     fit: Callable[[Images, Lights], Any]
-    predict: Callable[[Any, npt.NDArray[np.float64]], Stack]
 
 
 class _NormalsOnce:
@@ -177,15 +156,15 @@ def model_table(terms: int = 9, band_rows: int | None = None) -> dict[str, Model
     normals = _NormalsOnce(**kw)
     return {
         "ptm": Model("ptm", terms, "ptm", "PTM RGB (fitted)",
-                     lambda s, lt: fit_ptm_rgb(s, lt, **kw), predict_ptm),
+                     lambda s, lt: fit_ptm_rgb(s, lt, **kw)),
         "ptm-lrgb": Model("ptm-lrgb", terms, "ptm_lrgb", "PTM LRGB (fitted)",
-                          lambda s, lt: fit_ptm_lrgb(s, lt, **kw), predict_ptm),
+                          lambda s, lt: fit_ptm_lrgb(s, lt, **kw)),
         "hsh": Model("hsh", terms, f"hsh{terms}", f"HSH {terms} terms (fitted)",
-                     lambda s, lt: fit_hsh(s, lt, terms, **kw), predict_hsh),
+                     lambda s, lt: fit_hsh(s, lt, terms, **kw)),
         "normals": Model("normals", terms, "normals", "Normals + albedo (photometric stereo)",
-                         normals, predict_normals),
+                         normals),
         "ward": Model("ward", terms, "ward", "Lambert + Ward (fitted)",
-                      lambda s, lt: _fit_ward_model(normals, s, lt, **kw), predict_ward),
+                      lambda s, lt: _fit_ward_model(normals, s, lt, **kw)),
     }
 
 

@@ -15,7 +15,7 @@ import numpy.typing as npt
 from .hsh_basis import hsh_weights
 from .normals_fit import ITERATIONS, RANK_WINDOW, SHADOW_FRACTION, solve_normals_band
 from .ptm_model import ptm_weights
-from .ward_fit import fit_ward, predict_ward, quantize_ward
+from .ward_fit import GLOSS_LIMITS, Ward, fit_ward, predict_ward, quantize_ward
 
 Band = npt.NDArray[np.float32]
 Lights = npt.NDArray[np.float64]
@@ -110,8 +110,6 @@ def predict_normals_band(out: Out, light: npt.NDArray[np.float64]) -> Band:
 
 def predict_ward_band(out: Out, light: npt.NDArray[np.float64]) -> Band:
     """The viewer's ``clamp01(I)`` of a Ward band from its stored uint8 maps."""
-    from .ward_fit import GLOSS_LIMITS, Ward
-
     ward = Ward(out["normals"].astype(np.float32), out["kd"].astype(np.uint8),
                 out["ks"].astype(np.uint8), out["gloss"].astype(np.uint8), GLOSS_LIMITS)
     return predict_ward(ward, light)
