@@ -27,9 +27,9 @@ import numpy.typing as npt
 
 from . import fit_bands as fb
 from .hsh_fit import hsh_design_matrix, hsh_pinv, hsh_quantisation, hsh_quantize
-from .layers import SVBRDF_MAPS, encode_normals, ptm_plane_layer
+from .layers import SVBRDF_MAPS, encode_normals, hsh_plane_layer, ptm_plane_layer
 from .normals_fit import check_lights
-from .planes import PlaneData, PlaneGroup, PlaneLayer
+from .planes import PlaneGroup, PlaneLayer
 from .progress import Progress
 from .ptm_fit import ptm_design_matrix, ptm_pinv, ptm_quantisation, ptm_quantize
 from .render.shading import linear_to_srgb, srgb_to_linear
@@ -329,46 +329,42 @@ class _Sinks:
         assert spill.lo is not None and spill.hi is not None
         scale: Any
         bias: Any
+        # group name -> the (term slice, channel) of the coefficient-major bands it stores
+        parts: dict[str, tuple[slice, int | None]]
         if key == "hsh":
             scale, bias = hsh_quantisation(spill.lo, spill.hi)
-            names = [f"t{k}" for k in range(terms)]
+            parts = {f"t{t}": (slice(t, t + 1), None) for t in range(terms)}
         else:
             scale, bias = ptm_quantisation(spill.lo, spill.hi)
-            names = (["c0", "c1"] if key == "ptm-lrgb" else
-                     [f"{c}{g}" for c in "rgb" for g in range(2)])
+            thirds = [slice(3 * g, 3 * g + 3) for g in range(2)]
+            parts = ({f"c{g}": (k, None) for g, k in enumerate(thirds)} if key == "ptm-lrgb"
+                     else {f"{c}{g}": (k, ci) for ci, c in enumerate("rgb")
+                           for g, k in enumerate(thirds)})
+        quantize = hsh_quantize if key == "hsh" else ptm_quantize
         writers = {g: StripTiffWriter(self.scratch / f"{key}-{g}.tif", self.width, self.height,
-                                      3) for g in names}
+                                      3) for g in parts}
         bar = progress(f"quantising {key}", self.height) if progress else None
         done = 0
         for values in spill.bands():  # (K, b, W[, 3])
             per_term = (-1,) + (1,) * (values.ndim - 1)
-            if key == "hsh":
-                q = hsh_quantize(values, scale.reshape(per_term), bias.reshape(per_term))
-                for t, g in enumerate(names):
-                    writers[g].write(q[t])
-            else:
-                q = ptm_quantize(values, scale.reshape(per_term), bias.reshape(per_term))
-                for g in names:
-                    k = slice(3 * int(g[-1]), 3 * int(g[-1]) + 3)
-                    part = q[k] if key == "ptm-lrgb" else q[k, :, :, "rgb".index(g[0])]
-                    writers[g].write(np.moveaxis(part, 0, -1))
+            q = quantize(values, scale.reshape(per_term), bias.reshape(per_term))
+            for g, (k, channel) in parts.items():
+                part = q[k] if channel is None else q[k, :, :, channel]  # (terms, b, W[, 3])
+                # an HSH term holds its R, G, B; a PTM group three terms of one channel
+                writers[g].write(part[0] if key == "hsh" else np.moveaxis(part, 0, -1))
             done += values.shape[1]
             if bar:
                 bar.update(done)
         planes = {g: wr.close() for g, wr in writers.items()}
         if key == "hsh":
-            groups = [PlaneGroup([f"R{t}", f"G{t}", f"B{t}"], planes[f"t{t}"],
-                                 [float(scale[t])] * 3, [-float(bias[t]) / float(scale[t])] * 3)
-                      for t in range(terms)]
-            return PlaneLayer("hsh", groups, terms=terms, group_names=names)
-
-        def coefficients(c: int | None, k: slice) -> PlaneData:
-            g = k.start // 3
-            return planes[f"c{g}"] if c is None else planes[f"{'rgb'[c]}{g}"]
-
+            return hsh_plane_layer([float(s) for s in scale],
+                                   [-float(b) / float(s) for s, b in zip(scale, bias, strict=True)],
+                                   lambda t: planes[f"t{t}"])
         colorspace = "lrgb" if key == "ptm-lrgb" else "rgb"
-        return ptm_plane_layer(colorspace, scale, bias, coefficients,
-                               files.get("ptm-lrgb-color"))
+        return ptm_plane_layer(
+            colorspace, scale, bias,
+            lambda c, k: planes[f"c{k.start // 3}" if c is None else f"{'rgb'[c]}{k.start // 3}"],
+            files.get("ptm-lrgb-color"))
 
 
 def _to8(values: npt.NDArray[np.generic]) -> npt.NDArray[np.uint8]:

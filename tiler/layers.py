@@ -9,7 +9,7 @@ tiles them, renders the manifest's preview image with the reference renderer
 
 from __future__ import annotations
 
-from collections.abc import Callable
+from collections.abc import Callable, Sequence
 from typing import Any
 
 import numpy as np
@@ -135,16 +135,26 @@ def add_hsh_layer(ds: DatasetWriter, hsh: Hsh, *, layer_id: str = "hsh",
                   label: str = "HSH") -> dict[str, Any]:
     """Add an HSH field: one IIIF image per term holding its R, G, B coefficients."""
     scales, biases = hsh_plane_quantisation(hsh)
-    groups = []
-    for k in range(hsh.terms):
+
+    def term(k: int) -> PlaneData:
         data = hsh.coefficients[:, :, :, k]
-        if hsh.scale[k] == 0.0:
-            data = np.full_like(data, 255)
-        groups.append(PlaneGroup([f"R{k}", f"G{k}", f"B{k}"], data, [scales[k]] * 3,
-                                 [biases[k]] * 3))
-    planes = PlaneLayer("hsh", groups, terms=hsh.terms,
-                        group_names=[f"t{k}" for k in range(hsh.terms)])
+        return np.full_like(data, 255) if hsh.scale[k] == 0.0 else data
+
+    planes = hsh_plane_layer(scales, biases, term)
     return add_planes_layer(ds, planes, layer_id=layer_id, label=label)
+
+
+def hsh_plane_layer(scales: Sequence[float], biases: Sequence[float],
+                    term: Callable[[int], PlaneData]) -> PlaneLayer:
+    """The plane groups of an HSH field: ``t0 … t{K−1}``, term k's R, G, B in one image.
+
+    ``scales``/``biases`` are the stored ``(t − bias)·scale`` values per term;
+    ``term(k)`` returns term k's ``(H, W, 3)`` bytes.
+    """
+    groups = [PlaneGroup([f"R{k}", f"G{k}", f"B{k}"], term(k), [scales[k]] * 3, [biases[k]] * 3)
+              for k in range(len(scales))]
+    return PlaneLayer("hsh", groups, terms=len(scales),
+                      group_names=[f"t{k}" for k in range(len(scales))])
 
 
 def encode_normals(normals: npt.NDArray[np.floating]) -> npt.NDArray[np.uint8]:
