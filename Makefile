@@ -8,7 +8,7 @@ PORT   ?= 8000
 CHROMIUM := /usr/bin/chromium
 PLUGIN_SOURCES := $(shell find plugin/src plugin/index.html plugin/*.ts plugin/*.json -type f 2>/dev/null)
 
-.PHONY: demo test install build lint typecheck test-unit test-python browser-deps serve clean screenshot
+.PHONY: demo test install build lint typecheck typecheck-tree test-unit test-python browser-deps serve clean screenshot
 
 demo: install build ## make the demo dataset, serve it and print the URL
 	$(VENV)/bin/lanterna demo --root datasets --port $(PORT)
@@ -43,9 +43,15 @@ lint: install
 	$(VENV)/bin/ruff check lanterna tiler manifests server tests tools
 	npm run lint
 
-typecheck: install
+typecheck: install typecheck-tree
 	$(VENV)/bin/mypy
 	npm run typecheck
+
+# mypy sees the package as installed: lanterna/ with tiler/, manifests/, server/ linked inside it
+typecheck-tree:
+	@rm -rf .typecheck && mkdir -p .typecheck/lanterna
+	@for f in lanterna/*; do ln -s "$$PWD/$$f" .typecheck/lanterna/; done
+	@for d in tiler manifests server; do ln -s "$$PWD/$$d" .typecheck/lanterna/$$d; done
 
 test-unit: install
 	npm run test:unit

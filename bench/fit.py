@@ -7,7 +7,7 @@
 procedural in libvips, so it never exists whole in memory), then times, interleaved in one run
 (medians of ``--rounds``): the bare decode of every image (libvips, top to bottom), the read pass
 the fit makes (decode + conversion to float bands), and the streamed fit of each model with and
-without its leave-one-out twin (:func:`~lanterna.tiler.fit_engine.fit_stream`: solve,
+without its leave-one-out twin (:func:`~lanterna.tiler.fit.engine.fit_stream`: solve,
 quantise, write the 8-bit planes; tiling excluded — see bench/tiler.py).
 
 ``memory`` runs the whole ``lanterna fit`` (fit + tiling + manifest) of a large stack in a child
@@ -86,7 +86,7 @@ def _bare_decode(files: list[Path]) -> None:
 
 
 def _read_pass(files: list[Path], rows: int) -> None:
-    from lanterna.tiler.stack import StackReader
+    from lanterna.tiler.inputs.stack import StackReader
 
     reader = StackReader(files)
     for y0 in range(0, reader.shape[1], rows):
@@ -94,8 +94,8 @@ def _read_pass(files: list[Path], rows: int) -> None:
 
 
 def _fit(files: list[Path], lts: np.ndarray, key: str, held: int, scratch: Path) -> None:
-    from lanterna.tiler.fit_engine import fit_stream
-    from lanterna.tiler.stack import StackReader
+    from lanterna.tiler.fit.engine import fit_stream
+    from lanterna.tiler.inputs.stack import StackReader
 
     out = Path(tempfile.mkdtemp(dir=scratch))
     try:
@@ -105,8 +105,8 @@ def _fit(files: list[Path], lts: np.ndarray, key: str, held: int, scratch: Path)
 
 
 def throughput(args: argparse.Namespace) -> dict[str, Any]:
-    from lanterna.tiler.fit_engine import auto_band_rows
-    from lanterna.tiler.lp import read_lp
+    from lanterna.tiler.fit.engine import auto_band_rows
+    from lanterna.tiler.inputs.lp import read_lp
 
     work = Path(tempfile.mkdtemp(prefix="lanterna-bench-fit-", dir=args.tmp))
     try:

@@ -17,18 +17,18 @@ from pathlib import Path
 import numpy as np
 import pyvips
 
-from lanterna.tiler.dataset import DatasetWriter
-from lanterna.tiler.demo_object import make_demo_object
-from lanterna.tiler.hsh_basis import hsh_weights
-from lanterna.tiler.hsh_model import Hsh
-from lanterna.tiler.layers import (
+from lanterna.tiler.dataset.layers import (
     add_hsh_layer,
     add_image_layer,
     add_ptm_layer,
     add_svbrdf_layer,
-    encode_normals,
 )
-from lanterna.tiler.ptm_model import Ptm
+from lanterna.tiler.dataset.writer import DatasetWriter
+from lanterna.tiler.demo.tablet import make_demo_object
+from lanterna.tiler.formats.hsh_basis import hsh_weights
+from lanterna.tiler.formats.hsh_model import Hsh
+from lanterna.tiler.formats.layouts import encode_normals
+from lanterna.tiler.formats.ptm_model import Ptm
 
 
 def lambert_ptm_coefficients(n: np.ndarray) -> np.ndarray:

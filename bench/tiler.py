@@ -5,9 +5,9 @@ with ``os.wait4``):
 
 ``throughput``
     One procedural image (default 8192×8192, saved first as a tiled JPEG TIFF on disk) tiled by
-    :func:`lanterna.tiler.pyramid.write_pyramid` (dzsave plus the level-0 completeness fixes) and
-    by bare ``dzsave`` with the same arguments (same libvips, through pyvips; optionally also the
-    Debian ``vips`` command line), interleaved, ``--rounds`` rounds, per format; medians.
+    :func:`lanterna.tiler.iiif.pyramid.write_pyramid` (dzsave plus the level-0 completeness fixes)
+    and by bare ``dzsave`` with the same arguments (same libvips, through pyvips; optionally also
+    the Debian ``vips`` command line), interleaved, ``--rounds`` rounds, per format; medians.
 ``memory``
     The peak resident memory (max RSS) of tiling a 1-gigapixel image (32768×32768) with
     ``write_pyramid``, and of bare dzsave for comparison.
@@ -75,7 +75,7 @@ def _child(mode: str, src: Path, out: Path, fmt: str, tile_size: int, source: st
         image = image.copy_memory()
     t0 = time.perf_counter()
     if mode in ("pyramid", "pyramid-no-full-max"):
-        from lanterna.tiler import pyramid
+        from lanterna.tiler.iiif import pyramid
 
         if mode == "pyramid-no-full-max":  # what the level-0 full/max encode costs
             pyramid._FullMax.run = lambda self: None
@@ -222,7 +222,7 @@ def main() -> None:
     p.add_argument("--no-full-max", action="store_true",
                    help="also time write_pyramid without its full/max encode (diagnostic)")
     p.add_argument("--before", type=Path,
-                   help="also time this pyramid.py (e.g. `git show REV:tiler/pyramid.py`)")
+                   help="also time this pyramid.py (e.g. `git show REV:tiler/iiif/pyramid.py`)")
     p.add_argument("--cli", action="store_true", help="also time the `vips` command line")
     p.add_argument("--json", type=Path, help="write the results here")
     p.add_argument("--keep", action="store_true")

@@ -6,7 +6,7 @@ import argparse
 import sys
 
 from lanterna.commands import annotate_cmd, export_cmd, fit_cmd, import_cmd, serve_cmd
-from lanterna.tiler.errors import LanternaInputError
+from lanterna.errors import LanternaInputError
 
 EXAMPLES = """examples:
   lanterna import ushabti.ptm -o datasets/ushabti     tile a PTM as a relightable IIIF dataset

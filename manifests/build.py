@@ -26,7 +26,7 @@ from iiif_prezi3 import (
     config,
 )
 
-from lanterna.tiler.errors import LanternaInputError
+from lanterna.errors import LanternaInputError
 
 from .overlays import overlay_pages
 from .validate import validate_manifest

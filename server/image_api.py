@@ -142,7 +142,7 @@ def base(dataset: str, image: str) -> BaseResponse:
 def info_document(tiff: Path, image: str, service_id: str, limits: Limits,
                   tile_size: int) -> dict[str, Any]:
     """Return the info.json of the TIFF ``tiff`` served at ``service_id``."""
-    from lanterna.tiler import iiif_geometry as geo
+    from lanterna.tiler.iiif import geometry as geo
 
     width, height = render.tiff_levels(tiff)[0]
     factors = geo.scale_factors(width, height, tile_size)

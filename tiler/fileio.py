@@ -9,7 +9,7 @@ from collections.abc import Sequence
 from pathlib import Path
 from typing import Any
 
-from .errors import LanternaInputError
+from lanterna.errors import LanternaInputError
 
 
 def read_input(src: Path, what: str) -> bytes:

@@ -16,7 +16,7 @@ from pathlib import Path
 from werkzeug.serving import make_server
 
 from lanterna.server.app import create_app
-from lanterna.tiler.demo import build_demo
+from lanterna.tiler.demo.dataset import build_demo
 
 REPO = Path(__file__).resolve().parents[1]
 

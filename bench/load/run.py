@@ -46,9 +46,9 @@ from typing import Any
 
 import pyvips
 
-from lanterna.tiler import iiif_geometry as geo
-from lanterna.tiler.pyramid import write_pyramid
-from lanterna.tiler.tiff import write_tiff
+from lanterna.tiler.iiif import geometry as geo
+from lanterna.tiler.iiif.pyramid import write_pyramid
+from lanterna.tiler.iiif.tiff import write_tiff
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 from servers import Gunicorn, Nginx, Server, WsgiFloor, cpu_seconds, version  # noqa: E402

@@ -47,7 +47,7 @@ def register(sub: SubParsers) -> None:
 
 
 def run_build(args: argparse.Namespace) -> int:
-    from lanterna.tiler.overlays import OverlayInputError, build_overlays
+    from lanterna.tiler.overlays.build import OverlayInputError, build_overlays
 
     try:
         report = build_overlays(args.dataset, args.layer, patches_dir=args.patches,
@@ -70,7 +70,7 @@ def run_build(args: argparse.Namespace) -> int:
 
 
 def run_list(args: argparse.Namespace) -> int:
-    from lanterna.tiler.overlays import overlay_summary
+    from lanterna.tiler.overlays.build import overlay_summary
 
     for row in overlay_summary(args.dataset):
         if not row["levels"]:

@@ -6,8 +6,8 @@ import argparse
 from pathlib import Path
 from typing import TypeAlias
 
-from lanterna.tiler.dataset import DEFAULT_BASE_URL
-from lanterna.tiler.errors import LanternaInputError
+from lanterna.errors import LanternaInputError
+from lanterna.tiler.dataset.writer import DEFAULT_BASE_URL
 
 #: What ``sub.add_parser`` is called on.
 SubParsers: TypeAlias = "argparse._SubParsersAction[argparse.ArgumentParser]"

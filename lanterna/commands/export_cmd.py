@@ -37,7 +37,7 @@ def register(sub: SubParsers) -> None:
 
 
 def run(args: argparse.Namespace) -> int:
-    from lanterna.tiler.export import export
+    from lanterna.tiler.dataset.export import export
 
     viewer = None
     if args.with_viewer:

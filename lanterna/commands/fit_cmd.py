@@ -6,10 +6,10 @@ import argparse
 from pathlib import Path
 from typing import TYPE_CHECKING
 
-from lanterna.tiler.errors import LanternaInputError
+from lanterna.errors import LanternaInputError
 
 if TYPE_CHECKING:
-    from lanterna.tiler.fit_run import ImageSet
+    from lanterna.tiler.fit.run import ImageSet
 
 from .common import SubParsers, check_tile_size, dataset_args
 
@@ -64,7 +64,7 @@ def register(sub: SubParsers) -> None:
 
 
 def _sets(args: argparse.Namespace) -> list[ImageSet]:
-    from lanterna.tiler.fit_run import ImageSet
+    from lanterna.tiler.fit.run import ImageSet
 
     if args.images is not None and args.set:
         raise LanternaInputError(None, "give IMAGES_DIR or --set BAND=DIR, not both")
@@ -88,7 +88,7 @@ def _sets(args: argparse.Namespace) -> list[ImageSet]:
 
 
 def run(args: argparse.Namespace) -> int:
-    from lanterna.tiler.fit_run import fit_sets
+    from lanterna.tiler.fit.run import fit_sets
     from lanterna.tiler.progress import Progress
 
     check_tile_size(args.tile_size)

@@ -5,7 +5,7 @@ from __future__ import annotations
 import argparse
 from pathlib import Path
 
-from lanterna.tiler.errors import LanternaInputError
+from lanterna.errors import LanternaInputError
 
 from .common import SubParsers, check_tile_size, dataset_args
 
@@ -25,7 +25,7 @@ def register(sub: SubParsers, epilog: str) -> None:
 
 
 def run(args: argparse.Namespace) -> int:
-    from lanterna.tiler.importers import import_sources
+    from lanterna.tiler.ingest.importer import import_sources
 
     check_tile_size(args.tile_size)
     bands: dict[str, Path] = {}

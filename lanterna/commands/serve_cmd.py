@@ -9,7 +9,7 @@ from __future__ import annotations
 import argparse
 from pathlib import Path
 
-from lanterna.tiler.errors import LanternaInputError
+from lanterna.errors import LanternaInputError
 
 from .common import SubParsers, serve_args
 
@@ -90,7 +90,7 @@ def run_serve(args: argparse.Namespace) -> int:
 
 
 def run_demo(args: argparse.Namespace) -> int:
-    from lanterna.tiler.demo import build_demo
+    from lanterna.tiler.demo.dataset import build_demo
 
     out = args.root / "demo"
     if args.force or not (out / "lanterna.json").is_file():

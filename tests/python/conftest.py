@@ -11,7 +11,7 @@ import pytest
 from werkzeug.serving import make_server
 
 from lanterna.server.app import create_app
-from lanterna.tiler.ptm_model import Ptm
+from lanterna.tiler.formats.ptm_model import Ptm
 
 REPO = Path(__file__).resolve().parents[2]
 SHARED = REPO.parent / "shared"

@@ -14,15 +14,15 @@ import numpy as np
 import pyvips
 
 from lanterna.cli import main
-from lanterna.tiler.dataset import DatasetWriter
-from lanterna.tiler.hsh_model import Hsh
-from lanterna.tiler.layers import (
+from lanterna.tiler.dataset.layers import (
     add_hsh_layer,
     add_image_layer,
     add_ptm_layer,
     add_svbrdf_layer,
-    encode_normals,
 )
+from lanterna.tiler.dataset.writer import DatasetWriter
+from lanterna.tiler.formats.hsh_model import Hsh
+from lanterna.tiler.formats.layouts import encode_normals
 
 from .conftest import random_ptm
 

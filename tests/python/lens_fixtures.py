@@ -19,11 +19,11 @@ import numpy.typing as npt
 import pytest
 import pyvips
 
-from lanterna.tiler.dataset import DatasetWriter
-from lanterna.tiler.layers import add_image_layer, add_ptm_layer
-from lanterna.tiler.overlays import build_overlays
-from lanterna.tiler.ptm_model import Ptm
-from lanterna.tiler.pyramid import vips_from_array
+from lanterna.tiler.dataset.layers import add_image_layer, add_ptm_layer
+from lanterna.tiler.dataset.writer import DatasetWriter
+from lanterna.tiler.formats.ptm_model import Ptm
+from lanterna.tiler.iiif.pyramid import vips_from_array
+from lanterna.tiler.overlays.build import build_overlays
 from lanterna.tiler.render import level_channels, level_image, render
 
 from . import browser

@@ -1,7 +1,7 @@
 """Builders for small synthetic PTMs and an independent JPEG-PTM decoder for the tests.
 
-The decoder here is written from rti-formats.md §1.4 separately from ``tiler/ptm.py`` so that
-the tests do not check the reader against itself.
+The decoder here is written from rti-formats.md §1.4 separately from ``tiler/formats/ptm.py`` so
+that the tests do not check the reader against itself.
 """
 
 from __future__ import annotations
@@ -12,8 +12,8 @@ import numpy as np
 import numpy.typing as npt
 import pyvips
 
-from lanterna.tiler.ptm_model import Ptm
-from lanterna.tiler.ptm_write import PtmPrediction
+from lanterna.tiler.formats.ptm_model import Ptm
+from tests.python.fixtures.ptm_writer import PtmPrediction
 
 SCALE = np.array([0.5, 0.25, 1.5, 2.0, 3.0, 0.00390625], dtype=np.float32)
 BIAS = np.array([160, 150, 128, 127, -5, 0], dtype=np.int32)

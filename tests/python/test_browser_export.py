@@ -16,8 +16,8 @@ import numpy as np
 import pytest
 
 from lanterna.cli import main
-from lanterna.tiler.dataset import DatasetWriter
-from lanterna.tiler.layers import add_ptm_layer
+from lanterna.tiler.dataset.layers import add_ptm_layer
+from lanterna.tiler.dataset.writer import DatasetWriter
 
 from .browser import REPO, Shot, render
 from .static_server import StaticServer

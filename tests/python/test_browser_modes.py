@@ -19,17 +19,17 @@ import numpy as np
 import numpy.typing as npt
 import pytest
 
-from lanterna.tiler.dataset import DatasetWriter
-from lanterna.tiler.hsh_model import Hsh
-from lanterna.tiler.layers import (
+from lanterna.tiler.dataset.layers import (
     add_hsh_layer,
     add_image_layer,
     add_ptm_layer,
     add_svbrdf_layer,
-    encode_normals,
 )
-from lanterna.tiler.ptm_model import Ptm
-from lanterna.tiler.pyramid import vips_from_array
+from lanterna.tiler.dataset.writer import DatasetWriter
+from lanterna.tiler.formats.hsh_model import Hsh
+from lanterna.tiler.formats.layouts import encode_normals
+from lanterna.tiler.formats.ptm_model import Ptm
+from lanterna.tiler.iiif.pyramid import vips_from_array
 from lanterna.tiler.render import (
     PARAMETERS,
     applicable_modes,

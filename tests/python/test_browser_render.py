@@ -16,10 +16,10 @@ import numpy.typing as npt
 import pytest
 import pyvips
 
-from lanterna.tiler import iiif_geometry as geo
-from lanterna.tiler.dataset import DatasetWriter
-from lanterna.tiler.layers import add_ptm_layer
-from lanterna.tiler.ptm_model import Ptm, ptm_weights
+from lanterna.tiler.dataset.layers import add_ptm_layer
+from lanterna.tiler.dataset.writer import DatasetWriter
+from lanterna.tiler.formats.ptm_model import Ptm, ptm_weights
+from lanterna.tiler.iiif import geometry as geo
 
 from .browser import Shot, render
 from .conftest import LiveServer

@@ -12,9 +12,9 @@ import pytest
 import pyvips
 
 from lanterna.cli import main
-from lanterna.tiler import pyramid
-from lanterna.tiler.ptm import read_ptm
-from lanterna.tiler.ptm_write import write_ptm
+from lanterna.tiler.formats.ptm import read_ptm
+from lanterna.tiler.iiif import pyramid
+from tests.python.fixtures.ptm_writer import write_ptm
 
 from .conftest import random_ptm, shared_file
 
@@ -108,7 +108,7 @@ def test_failure_mid_write_leaves_nothing_and_keeps_previous(
             raise OSError("disk full (simulated)")
         return real(*args, **kwargs)  # type: ignore[arg-type]
 
-    monkeypatch.setattr("lanterna.tiler.dataset.write_pyramid", failing)
+    monkeypatch.setattr("lanterna.tiler.dataset.writer.write_pyramid", failing)
     with pytest.raises(OSError, match="disk full"):
         main(["import", str(src), "-o", str(out), "--force", "--label", "changed"])
     assert _leftovers(out.parent) == ["a"]

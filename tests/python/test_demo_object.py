@@ -1,4 +1,4 @@
-"""Tests for the procedural demo tablet (`lanterna.tiler.demo_object`) and the LRGB PTM fitter."""
+"""Tests for the procedural demo tablet (`lanterna.tiler.demo.tablet`) and the LRGB PTM fitter."""
 
 from __future__ import annotations
 
@@ -6,15 +6,15 @@ import numpy as np
 import numpy.typing as npt
 import pytest
 
-from lanterna.tiler.demo_object import DemoObject, make_demo_object, normals_from_height
-from lanterna.tiler.demo_render import demo_lights, make_demo_ptm, render, render_stack
-from lanterna.tiler.ptm_fit import (
+from lanterna.tiler.demo.dome import demo_lights, make_demo_ptm, render, render_stack
+from lanterna.tiler.demo.tablet import DemoObject, make_demo_object, normals_from_height
+from lanterna.tiler.fit.ptm import (
     LUMINANCE_WEIGHTS,
     fit_ptm_lrgb,
     ptm_design_matrix,
     quantize_coefficients,
 )
-from lanterna.tiler.ptm_model import Ptm
+from lanterna.tiler.formats.ptm_model import Ptm
 
 W, H = 256, 192
 

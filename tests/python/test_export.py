@@ -16,8 +16,8 @@ import pytest
 
 from lanterna.cli import main
 from lanterna.manifests.validate import validate_manifest
-from lanterna.tiler import export as export_mod
-from lanterna.tiler.export import export, rebase
+from lanterna.tiler.dataset import export as export_mod
+from lanterna.tiler.dataset.export import export, rebase
 
 from .dataset_kinds import BASE, KINDS, build_kinds
 

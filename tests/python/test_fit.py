@@ -11,10 +11,10 @@ import pytest
 import pyvips
 
 from lanterna.cli import main
-from lanterna.tiler.errors import LanternaInputError
-from lanterna.tiler.fit import fit_normals, leave_one_out, model_table
-from lanterna.tiler.fit_run import fit_collection
-from lanterna.tiler.stack import load_image, load_stack
+from lanterna.errors import LanternaInputError
+from lanterna.tiler.fit.models import fit_normals, leave_one_out, model_table
+from lanterna.tiler.fit.run import fit_collection
+from lanterna.tiler.inputs.stack import load_image, load_stack
 
 H, W, N = 24, 32, 50
 
@@ -140,7 +140,7 @@ def test_cli_fit_writes_layers_and_quality(tmp_path: Path, capsys: pytest.Captur
 def test_fitted_normals_from_16_bit_files(tmp_path: Path) -> None:
     truth, lights = _normals(), _lights()
     lp = _write_collection(tmp_path, _render(truth, lights), lights, suffix=".tif", depth=16)
-    from lanterna.tiler.lp import read_lp
+    from lanterna.tiler.inputs.lp import read_lp
 
     files, read_lights = read_lp(lp, tmp_path)
     fitted = fit_normals(load_stack(files), read_lights)

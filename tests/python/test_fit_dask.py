@@ -9,8 +9,8 @@ import numpy as np
 import pytest
 import pyvips
 
-from lanterna.tiler.errors import LanternaInputError
-from lanterna.tiler.fit_run import fit_collection
+from lanterna.errors import LanternaInputError
+from lanterna.tiler.fit.run import fit_collection
 
 from .test_fit_stream import BAND, _lights, _write_stack
 

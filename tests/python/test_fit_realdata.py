@@ -9,10 +9,10 @@ from typing import Any
 import numpy as np
 import pytest
 
-from lanterna.tiler.fit import fit_normals, leave_one_out, model_table
-from lanterna.tiler.fit_run import fit_collection
-from lanterna.tiler.lp import read_lp
-from lanterna.tiler.stack import load_stack
+from lanterna.tiler.fit.models import fit_normals, leave_one_out, model_table
+from lanterna.tiler.fit.run import fit_collection
+from lanterna.tiler.inputs.lp import read_lp
+from lanterna.tiler.inputs.stack import load_stack
 
 LOEWENKOPF = Path(__file__).resolve().parents[3] / "shared" / "realdata" / "neuralrti-loewenkopf"
 

@@ -13,12 +13,12 @@ import pytest
 import pyvips
 
 from lanterna.cli import main
-from lanterna.tiler.errors import LanternaInputError
-from lanterna.tiler.fit import fit_ptm_rgb
-from lanterna.tiler.fit_bands import LUMINANCE_WEIGHTS
-from lanterna.tiler.fit_run import ImageSet, fit_sets
+from lanterna.errors import LanternaInputError
+from lanterna.tiler.fit.bands import LUMINANCE_WEIGHTS
+from lanterna.tiler.fit.models import fit_ptm_rgb
+from lanterna.tiler.fit.run import ImageSet, fit_sets
+from lanterna.tiler.inputs.stack import load_stack
 from lanterna.tiler.progress import Progress
-from lanterna.tiler.stack import load_stack
 
 from .test_fit import _lights, _normals, _render, _write_collection
 
@@ -77,7 +77,7 @@ def test_bands_and_fusion_layers(bands: dict[str, Path], tmp_path: Path,
 
 
 def _lights_from(lp: Path) -> npt.NDArray[np.float64]:
-    from lanterna.tiler.lp import read_lp
+    from lanterna.tiler.inputs.lp import read_lp
 
     return read_lp(lp, lp.parent)[1]
 

@@ -12,15 +12,17 @@ import numpy.typing as npt
 import pytest
 import pyvips
 
-from lanterna.tiler import fit_run, layers
-from lanterna.tiler import stack as stack_module
-from lanterna.tiler.dataset import DatasetWriter
-from lanterna.tiler.errors import LanternaInputError
-from lanterna.tiler.fit import model_table
-from lanterna.tiler.fit_run import fit_collection
-from lanterna.tiler.layers import add_hsh_layer, add_ptm_layer, encode_normals
-from lanterna.tiler.lp import read_lp
-from lanterna.tiler.stack import StackReader, load_stack
+from lanterna.errors import LanternaInputError
+from lanterna.tiler.dataset import layers
+from lanterna.tiler.dataset.layers import add_hsh_layer, add_ptm_layer
+from lanterna.tiler.dataset.writer import DatasetWriter
+from lanterna.tiler.fit import run as fit_run
+from lanterna.tiler.fit.models import model_table
+from lanterna.tiler.fit.run import fit_collection
+from lanterna.tiler.formats.layouts import encode_normals
+from lanterna.tiler.inputs import stack as stack_module
+from lanterna.tiler.inputs.lp import read_lp
+from lanterna.tiler.inputs.stack import StackReader, load_stack
 
 W, H, N = 40, 1000, 30
 #: Band height of the streamed fits: not a divisor of H, nor of any fitter's default band.

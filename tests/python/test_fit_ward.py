@@ -10,9 +10,9 @@ import numpy.typing as npt
 import pytest
 
 from lanterna.cli import main
-from lanterna.tiler import fit_bands
-from lanterna.tiler.fit import leave_one_out, model_table, psnr
-from lanterna.tiler.ward_fit import GLOSS_LIMITS, alpha_grid, fit_ward, predict_ward, quantize_ward
+from lanterna.tiler.fit import bands as fit_bands
+from lanterna.tiler.fit.models import leave_one_out, model_table, psnr
+from lanterna.tiler.fit.ward import GLOSS_LIMITS, alpha_grid, fit_ward, predict_ward, quantize_ward
 
 from .test_fit import _write_collection
 

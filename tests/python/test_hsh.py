@@ -1,4 +1,4 @@
-"""Tests for the HSH ``.rti`` reader and writer (tiler/hsh.py)."""
+"""Tests for the HSH ``.rti`` reader and writer (tiler/formats/hsh.py)."""
 
 from __future__ import annotations
 
@@ -10,10 +10,11 @@ import numpy as np
 import numpy.typing as npt
 import pytest
 
-from lanterna.tiler.errors import LanternaInputError
-from lanterna.tiler.hsh import quantize_hsh, read_rti, write_rti
-from lanterna.tiler.hsh_basis import hsh_weights
-from lanterna.tiler.hsh_model import Hsh
+from lanterna.errors import LanternaInputError
+from lanterna.tiler.formats.hsh import quantize_hsh, read_rti
+from lanterna.tiler.formats.hsh_basis import hsh_weights
+from lanterna.tiler.formats.hsh_model import Hsh
+from tests.python.fixtures.rti_writer import write_rti
 
 SHARED = Path(__file__).resolve().parents[3] / "shared"
 VASE = SHARED / "realdata" / "chi-ushabti-vase" / "vase.rti"

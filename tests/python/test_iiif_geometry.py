@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import pytest
 
-from lanterna.tiler import iiif_geometry as geo
+from lanterna.tiler.iiif import geometry as geo
 
 
 @pytest.mark.parametrize(

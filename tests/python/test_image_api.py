@@ -13,10 +13,10 @@ import pyvips
 from flask.testing import FlaskClient
 
 from lanterna.server.app import create_app
-from lanterna.tiler import iiif_geometry as geo
-from lanterna.tiler.dataset import DatasetWriter
-from lanterna.tiler.layers import add_image_layer
-from lanterna.tiler.pyramid import vips_from_array
+from lanterna.tiler.dataset.layers import add_image_layer
+from lanterna.tiler.dataset.writer import DatasetWriter
+from lanterna.tiler.iiif import geometry as geo
+from lanterna.tiler.iiif.pyramid import vips_from_array
 
 W, H = 1100, 700
 BASE = "/iiif/3/obj/pic"

@@ -7,8 +7,8 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from lanterna.tiler.errors import LanternaInputError
-from lanterna.tiler.lp import read_lp
+from lanterna.errors import LanternaInputError
+from lanterna.tiler.inputs.lp import read_lp
 
 DISK = ["000.JPG", "001.jpg", "my image 2.png"]
 

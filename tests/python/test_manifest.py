@@ -7,8 +7,8 @@ from pathlib import Path
 
 import pytest
 
-from lanterna.tiler.dataset import DatasetWriter
-from lanterna.tiler.layers import add_ptm_layer
+from lanterna.tiler.dataset.layers import add_ptm_layer
+from lanterna.tiler.dataset.writer import DatasetWriter
 
 from .conftest import random_ptm
 
@@ -63,8 +63,8 @@ def test_every_service_in_the_manifest_exists_on_disk(dataset: Path) -> None:
 def test_large_image_body_has_the_size_of_its_reduced_full_max(tmp_path: Path) -> None:
     import pyvips
 
-    from lanterna.tiler.layers import add_image_layer
-    from lanterna.tiler.pyramid import FULL_MAX_LIMIT
+    from lanterna.tiler.dataset.layers import add_image_layer
+    from lanterna.tiler.iiif.pyramid import FULL_MAX_LIMIT
 
     w, h = FULL_MAX_LIMIT + 200, 64
     img = pyvips.Image.black(w, h, bands=3).copy(interpretation="srgb") + 90

@@ -1,4 +1,4 @@
-"""Tests for the map and band loaders (tiler/maps.py)."""
+"""Tests for the map and band loaders (tiler/inputs/maps.py)."""
 
 from __future__ import annotations
 
@@ -9,8 +9,8 @@ import numpy.typing as npt
 import pytest
 import pyvips
 
-from lanterna.tiler.errors import LanternaInputError
-from lanterna.tiler.maps import (
+from lanterna.errors import LanternaInputError
+from lanterna.tiler.inputs.maps import (
     load_band,
     load_color_map,
     load_depth_map,

@@ -12,7 +12,7 @@ from flask.testing import FlaskClient
 
 from lanterna.cli import main
 from lanterna.server.app import create_app
-from lanterna.tiler.ptm_write import write_ptm
+from tests.python.fixtures.ptm_writer import write_ptm
 
 from .conftest import random_ptm
 

@@ -20,10 +20,10 @@ from pathlib import Path
 
 import pytest
 
-from lanterna.tiler.dataset import DatasetWriter
-from lanterna.tiler.export import export
-from lanterna.tiler.importers import load_rgb_image
-from lanterna.tiler.layers import add_image_layer
+from lanterna.tiler.dataset.export import export
+from lanterna.tiler.dataset.layers import add_image_layer
+from lanterna.tiler.dataset.writer import DatasetWriter
+from lanterna.tiler.inputs.images import load_rgb_image
 
 from .conftest import REPO, SHARED, shared_file
 from .dataset_kinds import build_kinds

@@ -18,9 +18,9 @@ import numpy as np
 import numpy.typing as npt
 import pytest
 
-from lanterna.tiler import normals_fit
-from lanterna.tiler.normals_fit import solve_normals_band
-from lanterna.tiler.ptm_fit import LUMINANCE_WEIGHTS
+from lanterna.tiler.fit import normals as normals_fit
+from lanterna.tiler.fit.normals import solve_normals_band
+from lanterna.tiler.fit.ptm import LUMINANCE_WEIGHTS
 
 F64 = npt.NDArray[np.float64]
 P, N = 2000, 60
@@ -221,8 +221,8 @@ def test_coplanar_lights_raise() -> None:
 @pytest.mark.realdata
 def test_real_loewenkopf_band_faces_the_lights() -> None:
     """Rows 14–28 of the real 240-light Löwenkopf (960 px): +x light lights the right side."""
-    from lanterna.tiler.lp import read_lp
-    from lanterna.tiler.stack import StackReader
+    from lanterna.tiler.inputs.lp import read_lp
+    from lanterna.tiler.inputs.stack import StackReader
 
     from .conftest import shared_file
 

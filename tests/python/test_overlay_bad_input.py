@@ -10,10 +10,10 @@ from typing import Any
 import numpy as np
 import pytest
 
-import lanterna.tiler.overlays as overlays
 from lanterna.cli import main
-from lanterna.tiler.errors import LanternaInputError
-from lanterna.tiler.overlays import OverlayInputError, build_overlays
+from lanterna.errors import LanternaInputError
+from lanterna.tiler.overlays import build as overlays
+from lanterna.tiler.overlays.build import OverlayInputError, build_overlays
 
 from .test_overlays import make_dataset, patch, png
 

@@ -7,9 +7,10 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from lanterna.tiler import overlay_geometry as og
-from lanterna.tiler.errors import LanternaInputError
-from lanterna.tiler.overlays import composite, fit_level_image, read_texts
+from lanterna.errors import LanternaInputError
+from lanterna.tiler.overlays import geometry as og
+from lanterna.tiler.overlays.composite import composite, fit_level_image
+from lanterna.tiler.overlays.patches import read_texts
 
 RED, BLUE = (255, 0, 0), (0, 0, 255)
 

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import pytest
 
-from lanterna.tiler import overlay_geometry as og
+from lanterna.tiler.overlays import geometry as og
 
 NAMES = {
     # name: (level, x, y, w, h, order, info)

@@ -12,9 +12,9 @@ from flask.testing import FlaskClient
 
 from lanterna.cli import main
 from lanterna.server.app import create_app
-from lanterna.tiler.dataset import DatasetWriter
-from lanterna.tiler.layers import add_image_layer
-from lanterna.tiler.overlays import build_overlays
+from lanterna.tiler.dataset.layers import add_image_layer
+from lanterna.tiler.dataset.writer import DatasetWriter
+from lanterna.tiler.overlays.build import build_overlays
 
 W, H = 600, 400  # tile 256 → scale factors 1, 2, 4: levels 0–2
 BASE = "https://example.org/pub"

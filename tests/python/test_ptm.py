@@ -1,4 +1,4 @@
-"""Tests for the PTM reader and writer (tiler/ptm.py, tiler/ptm_write.py)."""
+"""Tests for the PTM reader (tiler/formats/ptm.py) and the tests' PTM writer (fixtures/)."""
 
 from __future__ import annotations
 
@@ -7,9 +7,9 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from lanterna.tiler.ptm import ptm_normals, read_ptm
-from lanterna.tiler.ptm_model import Ptm
-from lanterna.tiler.ptm_write import PtmFormat, PtmPrediction, write_ptm
+from lanterna.tiler.formats.ptm import ptm_normals, read_ptm
+from lanterna.tiler.formats.ptm_model import Ptm
+from tests.python.fixtures.ptm_writer import PtmFormat, PtmPrediction, write_ptm
 
 from .ptm_fixtures import (
     LRGB_PREDICTION,

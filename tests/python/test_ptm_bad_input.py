@@ -9,9 +9,9 @@ import numpy as np
 import pytest
 import pyvips
 
-from lanterna.tiler.errors import LanternaInputError
-from lanterna.tiler.ptm import read_ptm
-from lanterna.tiler.ptm_write import PtmPrediction, write_ptm
+from lanterna.errors import LanternaInputError
+from lanterna.tiler.formats.ptm import read_ptm
+from tests.python.fixtures.ptm_writer import PtmPrediction, write_ptm
 
 from .ptm_fixtures import LRGB_PREDICTION, random_ptm, smooth_ptm, with_overflow
 

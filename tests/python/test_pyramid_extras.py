@@ -8,9 +8,9 @@ import numpy as np
 import pytest
 import pyvips
 
-from lanterna.tiler import iiif_geometry as geo
-from lanterna.tiler import pyramid
-from lanterna.tiler.pyramid import FULL_MAX_LIMIT, vips_from_array, write_pyramid
+from lanterna.tiler.iiif import geometry as geo
+from lanterna.tiler.iiif import pyramid
+from lanterna.tiler.iiif.pyramid import FULL_MAX_LIMIT, vips_from_array, write_pyramid
 
 
 def _image(w: int, h: int) -> np.ndarray:

@@ -1,4 +1,4 @@
-"""Camera RAW input (tiler/raw.py), checked on synthetic DNGs from tests/python/dng_fixture.py.
+"""Camera RAW input (tiler/inputs/raw.py), checked on synthetic DNGs (fixtures/dng.py).
 
 The fixture's camera records linear sRGB scaled by its ``AsShotNeutral``, so a correct decode
 (camera white balance, the file's levels, colour matrix, no auto-brightening) returns the
@@ -16,9 +16,9 @@ import numpy as np
 import numpy.typing as npt
 import pytest
 
-from lanterna.tiler.errors import LanternaInputError
-from lanterna.tiler.raw import RAW_SUFFIXES, is_raw, raw_to_tiff, scratch_name
-from lanterna.tiler.stack import StackReader, load_image
+from lanterna.errors import LanternaInputError
+from lanterna.tiler.inputs.raw import RAW_SUFFIXES, is_raw, raw_to_tiff, scratch_name
+from lanterna.tiler.inputs.stack import StackReader, load_image
 
 from .dng_fixture import NEUTRAL, PATCHES, dng_bytes, patch_scene, scene_to_raw, write_dng
 

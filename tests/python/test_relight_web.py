@@ -1,4 +1,4 @@
-"""Tests for the Relight/OpenLIME web-format reader (tiler/relight_web.py).
+"""Tests for the Relight/OpenLIME web-format reader (tiler/formats/relight_web.py).
 
 The reference evaluation here follows Relight itself (``src/rti.cpp``: ``lightWeightsPtm`` builds
 ``1, x, y, xx, xy, yy``; ``lightWeightsHsh``; ``render`` for rgb and lrgb), independently of the
@@ -17,11 +17,11 @@ import numpy.typing as npt
 import pytest
 import pyvips
 
-from lanterna.tiler.errors import LanternaInputError
-from lanterna.tiler.hsh_basis import hsh_weights
-from lanterna.tiler.planes import PlaneLayer
-from lanterna.tiler.ptm_model import ptm_weights
-from lanterna.tiler.relight_web import read_relight
+from lanterna.errors import LanternaInputError
+from lanterna.tiler.formats.hsh_basis import hsh_weights
+from lanterna.tiler.formats.planes import PlaneLayer
+from lanterna.tiler.formats.ptm_model import ptm_weights
+from lanterna.tiler.formats.relight_web import read_relight
 
 W, H = 11, 6
 LIGHTS = [(0.0, 0.0), (0.6, 0.1), (-0.5, 0.4), (0.2, -0.7), (-0.3, -0.35)]

@@ -6,7 +6,7 @@ import numpy as np
 import numpy.typing as npt
 import pytest
 
-from lanterna.tiler.hsh_basis import hsh_weights
+from lanterna.tiler.formats.hsh_basis import hsh_weights
 from lanterna.tiler.render import albedo, f3, hsh_normals, normals, render
 from lanterna.tiler.render.shading import make_light
 

@@ -8,8 +8,9 @@ import numpy as np
 import numpy.typing as npt
 import pytest
 
-from lanterna.tiler.dataset import DatasetWriter
-from lanterna.tiler.layers import add_svbrdf_layer, encode_normals
+from lanterna.tiler.dataset.layers import add_svbrdf_layer
+from lanterna.tiler.dataset.writer import DatasetWriter
+from lanterna.tiler.formats.layouts import encode_normals
 from lanterna.tiler.render import (
     MODES,
     applicable_modes,

@@ -8,7 +8,7 @@ import numpy as np
 import numpy.typing as npt
 import pytest
 
-from lanterna.tiler.hsh_basis import hsh_weights
+from lanterna.tiler.formats.hsh_basis import hsh_weights
 from lanterna.tiler.render import hsh_basis, hsh_normals, ptm_normals
 from lanterna.tiler.render.hsh import NORMAL_LIGHTS
 

@@ -20,9 +20,9 @@ import pytest
 import pyvips
 
 from lanterna.server.app import create_app
-from lanterna.tiler.dataset import DatasetWriter
-from lanterna.tiler.layers import add_image_layer
-from lanterna.tiler.pyramid import vips_from_array
+from lanterna.tiler.dataset.layers import add_image_layer
+from lanterna.tiler.dataset.writer import DatasetWriter
+from lanterna.tiler.iiif.pyramid import vips_from_array
 
 from .conftest import LiveServer
 

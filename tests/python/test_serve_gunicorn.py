@@ -20,8 +20,8 @@ import pyvips
 
 from lanterna.cli import main
 from lanterna.server.wsgi import gunicorn_settings
-from lanterna.tiler.dataset import DatasetWriter
-from lanterna.tiler.layers import add_ptm_layer
+from lanterna.tiler.dataset.layers import add_ptm_layer
+from lanterna.tiler.dataset.writer import DatasetWriter
 
 from .conftest import random_ptm
 

@@ -9,8 +9,8 @@ import pytest
 from flask.testing import FlaskClient
 
 from lanterna.server.app import create_app
-from lanterna.tiler.dataset import DatasetWriter
-from lanterna.tiler.layers import add_ptm_layer
+from lanterna.tiler.dataset.layers import add_ptm_layer
+from lanterna.tiler.dataset.writer import DatasetWriter
 
 from .conftest import random_ptm
 
@@ -110,7 +110,7 @@ def test_create_app_needs_a_data_root() -> None:
 
 
 def test_every_tile_url_openseadragon_requests_is_served(root: Path, client: FlaskClient) -> None:
-    from lanterna.tiler import iiif_geometry as geo
+    from lanterna.tiler.iiif import geometry as geo
 
     for image in ("ptm_c0", "ptm_c1", "ptm_color", "ptm_preview"):
         info = client.get(f"/datasets/obj/iiif/{image}/info.json").get_json()

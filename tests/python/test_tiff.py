@@ -10,11 +10,11 @@ import pytest
 import pyvips
 
 from lanterna.cli import main
-from lanterna.tiler.dataset import DatasetWriter
-from lanterna.tiler.layers import add_image_layer, add_ptm_layer
-from lanterna.tiler.ptm_write import write_ptm
-from lanterna.tiler.pyramid import vips_from_array
-from lanterna.tiler.tiff import write_tiff
+from lanterna.tiler.dataset.layers import add_image_layer, add_ptm_layer
+from lanterna.tiler.dataset.writer import DatasetWriter
+from lanterna.tiler.iiif.pyramid import vips_from_array
+from lanterna.tiler.iiif.tiff import write_tiff
+from tests.python.fixtures.ptm_writer import write_ptm
 
 from .conftest import random_ptm
 

@@ -1,7 +1,8 @@
 """HSH layers (``layerType: "hsh"``, 4, 9 or 16 terms) in the reference renderer.
 
-The per-light weights come from :func:`lanterna.tiler.hsh_basis.hsh_weights`; :func:`hsh_basis`
-is the same basis over arrays of directions (for the albedo, lit along each pixel's normal).
+The per-light weights come from :func:`lanterna.tiler.formats.hsh_basis.hsh_weights`;
+:func:`hsh_basis` is the same basis over arrays of directions (for the albedo, lit along each
+pixel's normal).
 """
 
 from __future__ import annotations
@@ -13,7 +14,8 @@ from typing import Any
 import numpy as np
 import numpy.typing as npt
 
-from ..hsh_basis import MAX_THETA, hsh_weights
+from lanterna.tiler.formats.hsh_basis import MAX_THETA, hsh_weights
+
 from .filters import f3, unsharp
 from .shading import F32, Light, Params, Surface, clamp01, dot3, f32, mean_rgb
 
@@ -93,7 +95,7 @@ def hsh_normals(coeffs: npt.ArrayLike) -> F32:
     ----------
     coeffs:
         ``(..., 3, K)`` dequantised coefficients (channel R, G, B; K = 4, 9 or 16), e.g.
-        :meth:`lanterna.tiler.hsh_model.Hsh.dequantized`.
+        :meth:`lanterna.tiler.formats.hsh_model.Hsh.dequantized`.
 
     Returns
     -------

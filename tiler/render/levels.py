@@ -11,7 +11,8 @@ import numpy as np
 import numpy.typing as npt
 import pyvips
 
-from .. import iiif_geometry as geo
+from lanterna.tiler.iiif import geometry as geo
+
 from .shading import F32
 
 Region = tuple[int, int, int, int]

@@ -1,0 +1,258 @@
+"""Write a dataset folder atomically: images, layer service documents, lanterna.json, manifest.
+
+Everything goes to a temporary folder beside the target, renamed into place only when complete,
+so a failure (bad input, a full disk, Ctrl-C) leaves nothing half-written.
+"""
+
+from __future__ import annotations
+
+import json
+import os
+import re
+import shutil
+import tempfile
+from collections.abc import Iterator
+from contextlib import contextmanager
+from pathlib import Path
+from types import TracebackType
+from typing import Any
+
+import numpy as np
+import numpy.typing as npt
+import pyvips
+
+from lanterna.errors import LanternaInputError
+from lanterna.manifests.build import build_manifest
+from lanterna.tiler.iiif.pyramid import vips_from_array, write_pyramid
+from lanterna.tiler.iiif.tiff import write_tiff
+
+DEFAULT_BASE_URL = "http://127.0.0.1:8000/datasets"
+RELIGHT_TYPE = "LanternaRelight"
+RELIGHT_PROFILE = "urn:lanterna:relight:1"
+FORMAT_VERSION = 1
+#: Layer keys kept in lanterna.json but not in the relight service block.
+_NOT_IN_SERVICE = ("id", "label", "body", "overlay")
+_ID = re.compile(r"^[A-Za-z0-9_-]+$")
+
+
+def check_identifier(value: str, what: str) -> str:
+    """Return ``value`` if it is a safe identifier (``[A-Za-z0-9_-]+``), else raise."""
+    if not _ID.match(value):
+        raise LanternaInputError(None, f"{what} {value!r} must use only letters, digits, _ and -")
+    return value
+
+
+class DatasetWriter:
+    """Build one dataset in a temporary folder; publish it at ``out`` on a clean exit.
+
+    Use as a context manager::
+
+        with DatasetWriter(out, name="ushabti", label="Ushabti", width=w, height=h) as ds:
+            svc = ds.add_image("ptm_c0", planes, fmt="png")
+            ds.add_layer({...})
+    """
+
+    def __init__(self, out: Path, *, name: str, label: str, width: int, height: int,
+                 base_url: str = DEFAULT_BASE_URL, tile_size: int = 256,
+                 source: str | None = None, force: bool = False,
+                 summary: str | None = None, quality: dict[str, Any] | None = None,
+                 tiff: bool = False) -> None:
+        self.out = Path(out)
+        self.name = check_identifier(name, "dataset name")
+        self.label = label
+        self.width, self.height = width, height
+        self.base_url = base_url.rstrip("/")
+        self.tile_size = tile_size
+        self.source = source
+        self.summary = summary
+        self.quality = quality
+        self.force = force
+        self.tiff = tiff
+        self.images: dict[str, dict[str, Any]] = {}
+        self.layers: list[dict[str, Any]] = []
+        self._shared: dict[str, str] = {}
+        self._tmp: Path | None = None
+
+    # -- context manager -------------------------------------------------------------------
+    def __enter__(self) -> DatasetWriter:
+        if self.out.exists() and not self.force:
+            raise LanternaInputError(self.out, "output exists (use --force to replace it)")
+        self.out.parent.mkdir(parents=True, exist_ok=True)
+        self._tmp = Path(tempfile.mkdtemp(prefix=f".{self.out.name}.tmp-", dir=self.out.parent))
+        self._tmp.chmod(0o755)  # mkdtemp makes it private; the published dataset is public
+        return self
+
+    def __exit__(self, exc_type: type[BaseException] | None, exc: BaseException | None,
+                 tb: TracebackType | None) -> None:
+        assert self._tmp is not None
+        try:
+            if exc_type is None:
+                self._finish()
+        finally:
+            shutil.rmtree(self._tmp, ignore_errors=True)
+
+    # -- building --------------------------------------------------------------------------
+    @property
+    def dataset_url(self) -> str:
+        return f"{self.base_url}/{self.name}"
+
+    def add_image(self, identifier: str, image: npt.NDArray[np.uint8] | pyvips.Image, *,
+                  fmt: str = "png", share_key: str | None = None,
+                  size: tuple[int, int] | None = None) -> dict[str, Any]:
+        """Tile ``image`` as IIIF image ``identifier``; return its ``ImageService3`` reference.
+
+        Images given the same ``share_key`` (e.g. the resolved path of a normal map used by several
+        layers) are stored and served once: later calls return the first image's service.
+        ``size`` is the expected ``(width, height)`` when it is not the canvas's (overlay levels).
+        With ``tiff=True`` the image is also written as ``tiff/<identifier>.tif``, a pyramidal
+        TIFF for the IIIF image server (recorded as the image's ``tiff`` field).
+        """
+        assert self._tmp is not None, "use DatasetWriter as a context manager"
+        if share_key is not None and share_key in self._shared:
+            return self._service(self._shared[share_key])
+        check_identifier(identifier, "image identifier")
+        if identifier in self.images:
+            raise LanternaInputError(self.source, f"image id {identifier!r} is used twice "
+                                     "(two layers' ids clash)")
+        vimg = vips_from_array(image) if isinstance(image, np.ndarray) else image
+        want_w, want_h = size or (self.width, self.height)
+        if (vimg.width, vimg.height) != (want_w, want_h):
+            what = "the dataset is" if size is None else "expected"
+            raise LanternaInputError(self.source, f"image {identifier} is {vimg.width}x"
+                                     f"{vimg.height}, {what} {want_w}x{want_h}")
+        (self._tmp / "iiif").mkdir(exist_ok=True)
+        service_id = f"{self.dataset_url}/iiif/{identifier}"
+        info = write_pyramid(vimg, self._tmp / "iiif" / identifier, service_id, fmt=fmt,
+                             tile_size=self.tile_size)
+        self.images[identifier] = {"format": fmt, "width": vimg.width, "height": vimg.height,
+                                   "bands": vimg.bands}
+        if "maxWidth" in info:  # full/max is a reduced level (large images)
+            self.images[identifier].update(maxWidth=info["maxWidth"], maxHeight=info["maxHeight"])
+        if self.tiff:
+            (self._tmp / "tiff").mkdir(exist_ok=True)
+            write_tiff(vimg, self._tmp / "tiff" / f"{identifier}.tif", fmt=fmt)
+            self.images[identifier]["tiff"] = f"tiff/{identifier}.tif"
+        if share_key is not None:
+            self._shared[share_key] = identifier
+        return self._service(identifier)
+
+    def _service(self, identifier: str) -> dict[str, Any]:
+        return {"id": f"{self.dataset_url}/iiif/{identifier}", "type": "ImageService3",
+                "profile": "level0"}
+
+    def add_layer(self, layer: dict[str, Any]) -> None:
+        """Add a layer: ``{"id", "label", "layerType", "body": image id, ...relight fields}``."""
+        check_identifier(layer["id"], "layer id")
+        if any(other["id"] == layer["id"] for other in self.layers):
+            raise LanternaInputError(self.source, f"layer id {layer['id']!r} is used twice")
+        if layer["body"] not in self.images:
+            raise ValueError(f"layer body image {layer['body']!r} was not added")
+        self.layers.append(layer)
+
+    def layer_service(self, layer: dict[str, Any]) -> dict[str, Any]:
+        """Return the relight service block of ``layer`` (see docs/dataset-format.md)."""
+        block = {"id": f"{self.dataset_url}/layers/{layer['id']}.json", "type": RELIGHT_TYPE,
+                 "profile": RELIGHT_PROFILE, "width": self.width, "height": self.height}
+        block.update({k: v for k, v in layer.items() if k not in _NOT_IN_SERVICE})
+        return block
+
+    def description(self) -> dict[str, Any]:
+        """Return the ``lanterna.json`` document."""
+        return {
+            "lanterna": FORMAT_VERSION,
+            "name": self.name,
+            "label": self.label,
+            "width": self.width,
+            "height": self.height,
+            "baseUrl": self.base_url,
+            "source": self.source,
+            **({"summary": self.summary} if self.summary else {}),
+            **({"quality": self.quality} if self.quality else {}),
+            "images": self.images,
+            "layers": [
+                {"id": layer["id"], "label": layer["label"], "body": layer["body"],
+                 "service": self.layer_service(layer),
+                 **({"overlay": layer["overlay"]} if "overlay" in layer else {})}
+                for layer in self.layers
+            ],
+        }
+
+    def _finish(self) -> None:
+        assert self._tmp is not None
+        if not self.layers:
+            raise ValueError("a dataset needs at least one layer")
+        write_documents(self._tmp, self.description())
+        publish(self._tmp, self.out)
+
+
+def write_documents(folder: Path, desc: dict[str, Any]) -> None:
+    """Write ``desc`` as ``layers/*.json``, ``lanterna.json`` and ``manifest.json`` in folder."""
+    (folder / "layers").mkdir(exist_ok=True)
+    for layer in desc["layers"]:
+        _write_json(folder / "layers" / f"{layer['id']}.json", layer["service"])
+    _write_json(folder / "lanterna.json", desc)
+    _write_json(folder / "manifest.json", build_manifest(desc))
+
+
+def publish(tmp: Path, out: Path) -> None:
+    """Put the complete dataset folder ``tmp`` at ``out``, replacing what was there."""
+    if out.exists():
+        old = out.with_name(f".{out.name}.old-{tmp.name[-8:]}")
+        out.rename(old)
+        tmp.rename(out)
+        shutil.rmtree(old, ignore_errors=True)
+    else:
+        tmp.rename(out)
+
+
+@contextmanager
+def rewriting(out: Path) -> Iterator[tuple[Path, dict[str, Any]]]:
+    """Rewrite the existing dataset ``out`` atomically; yield ``(folder, description)``.
+
+    The dataset is copied into a temporary folder beside it (files hard-linked, so unchanged tiles
+    cost nothing; files are only ever replaced, never written through a link). The caller changes
+    the copy and the description in place; on a clean exit the documents (``lanterna.json``,
+    ``layers/*.json``, ``manifest.json``) are regenerated from the description and the copy
+    replaces ``out``. On an error the copy is removed and ``out`` is untouched.
+    """
+    out = Path(out)
+    desc = read_description(out)
+    tmp = Path(tempfile.mkdtemp(prefix=f".{out.name}.tmp-", dir=out.parent))
+    try:
+        tmp.chmod(0o755)
+        shutil.copytree(out, tmp, dirs_exist_ok=True, copy_function=_link_or_copy)
+        yield tmp, desc
+        write_documents(tmp, desc)
+        publish(tmp, out)
+    finally:
+        shutil.rmtree(tmp, ignore_errors=True)
+
+
+def read_description(dataset: Path) -> dict[str, Any]:
+    """Read a dataset's ``lanterna.json`` with a one-line error if it is not a dataset."""
+    path = Path(dataset) / "lanterna.json"
+    try:
+        desc = json.loads(path.read_text())
+    except OSError:
+        raise LanternaInputError(dataset, "not a Lanterna dataset (no lanterna.json)") from None
+    except ValueError as err:
+        raise LanternaInputError(path, f"not valid JSON ({err})") from None
+    if not isinstance(desc, dict) or desc.get("lanterna") != FORMAT_VERSION:
+        raise LanternaInputError(path, f"not a version-{FORMAT_VERSION} dataset description")
+    return desc
+
+
+def _link_or_copy(src: str, dst: str) -> object:
+    try:
+        os.link(src, dst)
+    except OSError:
+        shutil.copy2(src, dst)
+    return dst
+
+
+def _write_json(path: Path, doc: dict[str, Any]) -> None:
+    # Write a new file and rename it over the old one: ``path`` may be a hard link shared with
+    # the published dataset (see ``rewriting``), which must not change.
+    part = path.with_name(path.name + ".part")
+    part.write_text(json.dumps(doc, indent=2) + "\n")
+    os.replace(part, path)

@@ -1,0 +1,116 @@
+"""Per-row-band solvers of every fittable model, and their predictions on the float result.
+
+Every model is per pixel, so a fit is the concatenation of the fits of its row bands: these
+functions take one band ``(N, b, W, 3)`` float32 in 0–1 (all lights) and return the band's
+float outputs; the whole-image fitters (:mod:`~lanterna.tiler.fit.models`,
+:mod:`~lanterna.tiler.fit.ptm`, :mod:`~lanterna.tiler.fit.hsh`) and the streaming engine
+(:mod:`~lanterna.tiler.fit.engine`) both loop over them, so they cannot disagree.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import numpy.typing as npt
+
+from lanterna.tiler.formats.hsh_basis import hsh_weights
+from lanterna.tiler.formats.ptm_model import ptm_weights
+
+from .normals import ITERATIONS, RANK_WINDOW, SHADOW_FRACTION, solve_normals_band
+from .ward import GLOSS_LIMITS, Ward, fit_ward, predict_ward, quantize_ward
+
+Band = npt.NDArray[np.float32]
+Lights = npt.NDArray[np.float64]
+Out = dict[str, npt.NDArray[np.generic]]
+
+#: Rec. 709 luminance weights used by ptmfit (``computepoly.c``).
+LUMINANCE_WEIGHTS = (0.2125, 0.7154, 0.0721)
+#: Tukey IRLS steps of the photometric stereo in linear light (none on values as stored).
+IRLS_ITERATIONS = ITERATIONS
+
+
+def _project(pinv: npt.NDArray[np.float32], band: Band) -> npt.NDArray[np.float32]:
+    """``(K, N) @ (N, b, W, 3)`` as one BLAS product, returned ``(b, W, 3, K)`` (a view)."""
+    n, b, w, c = band.shape
+    flat = np.ascontiguousarray(band, np.float32).reshape(n, -1)
+    return np.moveaxis((pinv @ flat).reshape(-1, b, w, c), 0, -1)
+
+
+def ptm_rgb_band(band: Band, pinv255: npt.NDArray[np.float32]) -> Out:
+    """RGB PTM: ``coeffs (b, W, 3, 6)`` in 0–255 units, ``pinv255`` the ``(6, N)`` pinv × 255."""
+    return {"coeffs": _project(pinv255, band)}
+
+
+def ptm_lrgb_band(band: Band, pinv: npt.NDArray[np.float32]) -> Out:
+    """LRGB PTM (ptmfit): ``coeffs (b, W, 6)`` 0–255 units of the normalised luminance and
+    ``rgb (b, W, 3)`` uint8 = ``rint(255 · Σ c·Yn / Σ Yn²)``."""
+    n, b, w, _ = band.shape
+    lum = band @ np.asarray(LUMINANCE_WEIGHTS, np.float32)  # (N, b, W)
+    peak = lum.max(axis=0)
+    safe = np.where(peak > 1e-6, peak, np.float32(1.0))
+    lum_n = np.where(peak > 1e-6, lum / safe, np.float32(0.0))
+    coeffs = (pinv @ (lum_n.reshape(n, -1) * np.float32(255.0))).T.reshape(b, w, 6)
+    energy = np.einsum("nhw,nhw->hw", lum_n, lum_n)
+    proj = np.einsum("nhwc,nhw->hwc", band, lum_n)
+    colour = proj / np.where(energy > 1e-12, energy, np.float32(1.0))[..., None]
+    rgb = np.clip(np.rint(colour * 255.0), 0, 255).astype(np.uint8)
+    return {"coeffs": coeffs.astype(np.float32), "rgb": rgb}
+
+
+def hsh_band(band: Band, pinv: npt.NDArray[np.float32]) -> Out:
+    """HSH: ``coeffs (b, W, 3, T)`` in 0–1 units, ``pinv`` the ``(T, N)`` pseudo-inverse."""
+    return {"coeffs": _project(pinv, band)}
+
+
+def normals_band(band: Band, lights: Lights, *, rank_window: tuple[float, float] = RANK_WINDOW,
+                 shadow: float = SHADOW_FRACTION, iterations: int = 0) -> Out:
+    """Robust photometric stereo: ``normals (b, W, 3)`` unit, ``albedo (b, W, 3)``.
+
+    The rank-window selection of :func:`lanterna.tiler.fit.models.fit_normals`, refined by
+    ``iterations`` steps of Tukey IRLS (:func:`~lanterna.tiler.fit.normals.solve_normals_band`;
+    0 = the rank window alone, the default for values as stored).
+    """
+    n, b, w, _ = band.shape
+    lum = (band @ np.asarray(LUMINANCE_WEIGHTS, np.float32)).reshape(n, -1).astype(np.float64)
+    nrm, albedo = solve_normals_band(lum, band.reshape(n, -1, 3), lights.astype(np.float64),
+                                     rank_window=rank_window, shadow=shadow,
+                                     iterations=iterations)
+    return {"normals": nrm.reshape(b, w, 3), "albedo": albedo.reshape(b, w, 3)}
+
+
+def ward_band(band: Band, lights: Lights, normals: npt.NDArray[np.float32]) -> Out:
+    """Lambert + Ward with the normal fixed: uint8 ``kd``, ``ks``, ``gloss`` (b, W[, 3])."""
+    kd, ks, alpha = fit_ward(band, lights, normals, band_rows=max(1, band.shape[1]))
+    ward = quantize_ward(normals, kd, ks, alpha)
+    return {"kd": ward.kd, "ks": ward.ks, "gloss": ward.gloss}
+
+
+def predict_ptm_band(out: Out, light: npt.NDArray[np.float64]) -> Band:
+    """A PTM band (float coefficients) relit under ``light``, 0–1 as ``Ptm.relight``."""
+    w = ptm_weights(float(light[0]), float(light[1])).astype(np.float32)
+    lum = out["coeffs"].astype(np.float32) @ w
+    if "rgb" in out:
+        res = out["rgb"].astype(np.float32) / 255.0 * (lum / 255.0)[..., None]
+    else:
+        res = lum / 255.0
+    return np.clip(res, 0.0, 1.0).astype(np.float32)
+
+
+def predict_hsh_band(out: Out, light: npt.NDArray[np.float64]) -> Band:
+    """An HSH band (float coefficients) relit under ``light``, clipped to 0–1."""
+    terms = out["coeffs"].shape[-1]
+    wts = hsh_weights(float(light[0]), float(light[1]), terms)
+    res: Band = np.clip(out["coeffs"].astype(np.float32) @ wts, 0.0, 1.0).astype(np.float32)
+    return res
+
+
+def predict_normals_band(out: Out, light: npt.NDArray[np.float64]) -> Band:
+    """Lambert ``albedo · max(0, n·l)`` of a normals band, clipped to 0–1."""
+    shade = np.maximum(out["normals"].astype(np.float32) @ light.astype(np.float32), 0.0)
+    return np.clip(out["albedo"] * shade[..., None], 0.0, 1.0).astype(np.float32)
+
+
+def predict_ward_band(out: Out, light: npt.NDArray[np.float64]) -> Band:
+    """The viewer's ``clamp01(I)`` of a Ward band from its stored uint8 maps."""
+    ward = Ward(out["normals"].astype(np.float32), out["kd"].astype(np.uint8),
+                out["ks"].astype(np.uint8), out["gloss"].astype(np.uint8), GLOSS_LIMITS)
+    return predict_ward(ward, light)

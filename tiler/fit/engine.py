@@ -1,0 +1,389 @@
+"""Fit every requested model in one streamed pass over a multi-light collection.
+
+One pass reads the images top to bottom in bands of rows (:class:`~lanterna.tiler.inputs.stack.
+StackReader`) and, per band, solves every model twice — on all lights (the layer) and without
+the held-out lights (the leave-one-out report, accumulated as squared errors on the held-out
+images of the same band) — so the images are decoded once whatever the number of models.
+
+Memory is bounded by the band, not the image: per-pixel encodings (normal maps, Ward maps, the
+LRGB colour plane) go straight to file-backed planes (:class:`~lanterna.tiler.formats.strip_tiff.
+StripTiffWriter`); PTM/HSH coefficients need their global range before they can be quantised,
+so their floats are appended to a scratch file (4 bytes per coefficient per pixel on disk) with
+the running min/max, and a second, sequential pass over that file writes the 8-bit planes.
+The results are :class:`~lanterna.tiler.formats.planes.PlaneLayer` s whose groups are those files.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable, Iterable, Iterator, Sequence
+from concurrent.futures import ThreadPoolExecutor
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any, BinaryIO, Protocol
+
+import numpy as np
+import numpy.typing as npt
+
+from lanterna.tiler.formats.layouts import (
+    SVBRDF_MAPS,
+    encode_normals,
+    hsh_plane_layer,
+    ptm_plane_layer,
+)
+from lanterna.tiler.formats.planes import PlaneGroup, PlaneLayer
+from lanterna.tiler.formats.strip_tiff import BandImage, StripTiffWriter
+from lanterna.tiler.inputs.stack import StackReader
+from lanterna.tiler.progress import Progress
+from lanterna.tiler.render.shading import linear_to_srgb, srgb_to_linear
+
+from . import bands as fb
+from .hsh import hsh_design_matrix, hsh_pinv, hsh_quantisation, hsh_quantize
+from .normals import check_lights
+from .ptm import ptm_design_matrix, ptm_pinv, ptm_quantisation, ptm_quantize
+from .ward import GLOSS_LIMITS
+
+Images = npt.NDArray[np.float32] | StackReader
+Lights = npt.NDArray[np.float64]
+
+#: Bytes of input (N × rows × W × 3 float32) solved at once when the band height is automatic.
+BAND_BUDGET = 48 << 20
+#: Models the engine fits, by CLI name.
+MODEL_KEYS = ("ptm", "ptm-lrgb", "hsh", "normals", "ward")
+
+
+def auto_band_rows(n: int, width: int, budget: int = BAND_BUDGET) -> int:
+    """Rows per band so that the float input band ``(n, rows, width, 3)`` fits ``budget``."""
+    return max(1, min(256, budget // max(1, n * width * 12)))
+
+
+@dataclass
+class _Solver:
+    """The pseudo-inverses (or checks) of the requested models for one set of lights."""
+
+    lights: Lights
+    keys: Sequence[str]
+    terms: int
+    linear: bool = False
+    pinv: dict[str, npt.NDArray[np.float32]] = field(default_factory=dict)
+
+    def __post_init__(self) -> None:
+        keys = set(self.keys)
+        key = next(iter(self.keys), "")
+        try:
+            if {"ptm", "ptm-lrgb"} & keys:
+                key = next(k for k in self.keys if k.startswith("ptm"))
+                pinv = ptm_pinv(ptm_design_matrix(self.lights))
+                self.pinv["ptm-lrgb"] = pinv.astype(np.float32)
+                self.pinv["ptm"] = (pinv * 255.0).astype(np.float32)
+            if "hsh" in keys:
+                key = "hsh"
+                self.pinv["hsh"] = hsh_pinv(hsh_design_matrix(self.lights, self.terms), self.terms)
+            if {"normals", "ward"} & keys:
+                key = "normals" if "normals" in keys else "ward"
+                check_lights(self.lights)
+        except ValueError as err:
+            raise ValueError(f"{key}: {err}") from None
+
+    def solve(self, band: npt.NDArray[np.float32]) -> dict[str, fb.Out]:
+        """Every requested model's float outputs for one band (all of this solver's lights)."""
+        out: dict[str, fb.Out] = {}
+        if "ptm" in self.keys:
+            out["ptm"] = fb.ptm_rgb_band(band, self.pinv["ptm"])
+        if "ptm-lrgb" in self.keys:
+            out["ptm-lrgb"] = fb.ptm_lrgb_band(band, self.pinv["ptm-lrgb"])
+        if "hsh" in self.keys:
+            out["hsh"] = fb.hsh_band(band, self.pinv["hsh"])
+        if {"normals", "ward"} & set(self.keys):
+            physical = srgb_to_linear(band) if self.linear else band
+            nrm = fb.normals_band(physical, self.lights,
+                                  iterations=fb.IRLS_ITERATIONS if self.linear else 0)
+            out["normals"] = nrm
+            if "ward" in self.keys:
+                normals = nrm["normals"].astype(np.float32)
+                out["ward"] = {**fb.ward_band(physical, self.lights, normals),
+                               "normals": normals}
+        return out
+
+
+PREDICT: dict[str, Callable[[fb.Out, npt.NDArray[np.float64]], fb.Band]] = {
+    "ptm": fb.predict_ptm_band, "ptm-lrgb": fb.predict_ptm_band, "hsh": fb.predict_hsh_band,
+    "normals": fb.predict_normals_band, "ward": fb.predict_ward_band,
+}
+
+
+_StepResult = tuple[dict[str, fb.Out] | None, dict[str, npt.NDArray[np.float64]]]
+
+
+@dataclass
+class _Step:
+    """Everything done to one band: the layer fit and the held-out squared errors.
+
+    A picklable callable, so a Dask worker can run it on the band it reads.
+    """
+
+    full: _Solver
+    loo: _Solver | None
+    held: npt.NDArray[np.intp]
+    train: npt.NDArray[np.intp]
+    layers: bool
+
+    def __call__(self, band: npt.NDArray[np.float32]) -> _StepResult:
+        keys = self.full.keys
+        outs = self.full.solve(band) if self.layers else None
+        sse = {k: np.zeros(len(self.held)) for k in keys}
+        if self.loo is not None:
+            fitted = self.loo.solve(band[self.train])
+            for k in keys:
+                for j, i in enumerate(self.held):
+                    pred = PREDICT[k](fitted[k], self.full.lights[i])
+                    if self.full.linear and k in ("normals", "ward"):
+                        pred = linear_to_srgb(pred)
+                    diff = pred.astype(np.float64) - band[i]
+                    sse[k][j] = float(np.vdot(diff, diff))
+        return outs, sse
+
+
+class BandRunner(Protocol):
+    """Runs :class:`_Step` on the row bands of a stack elsewhere (e.g. on a Dask cluster)."""
+
+    def bands(self, images: Images, spans: Sequence[tuple[int, int]],
+              step: Callable[[npt.NDArray[np.float32]], _StepResult]
+              ) -> Iterator[_StepResult]:
+        """Yield ``step(images[:, y0:y1])`` for every span, in order."""
+        ...
+
+
+class _Spill:
+    """Float coefficients appended band by band to a scratch file, with their running range."""
+
+    def __init__(self, path: Path) -> None:
+        self.path = path
+        self.file: BinaryIO = open(path, "wb")  # noqa: SIM115 - closed in finish()
+        self.lo: npt.NDArray[np.float64] | None = None
+        self.hi: npt.NDArray[np.float64] | None = None
+        self.shapes: list[tuple[int, ...]] = []
+
+    def append(self, values: npt.NDArray[np.float32]) -> None:
+        """Append a band ``(b, …, K)``; stored coefficient-major (``(K, b, …)``), so the solvers'
+        ``(K, pixels)`` products are written without a copy and reduced per row."""
+        km = np.ascontiguousarray(np.moveaxis(values, -1, 0), np.float32)
+        flat = km.reshape(km.shape[0], -1)
+        lo, hi = flat.min(axis=1).astype(np.float64), flat.max(axis=1).astype(np.float64)
+        if not (np.all(np.isfinite(lo)) and np.all(np.isfinite(hi))):
+            raise ValueError("the fit produced non-finite coefficients")
+        self.lo = lo if self.lo is None else np.minimum(self.lo, lo)
+        self.hi = hi if self.hi is None else np.maximum(self.hi, hi)
+        self.file.write(km.data)
+        self.shapes.append(km.shape)
+
+    def bands(self) -> Any:
+        """Yield the bands back in order, ``(K, b, …)`` (the file is deleted after the last)."""
+        self.file.close()
+        with open(self.path, "rb") as f:
+            for shape in self.shapes:
+                yield np.fromfile(f, np.float32, math.prod(shape)).reshape(shape)
+        self.path.unlink()
+
+
+@dataclass
+class FitResult:
+    """The fitted layers (file-backed planes in the scratch folder) and the quality report."""
+
+    layers: dict[str, PlaneLayer]
+    quality: dict[str, dict[str, Any]]
+    band_rows: int
+
+
+def fit_stream(images: Images, lights: Lights, keys: Sequence[str], scratch: Path, *,
+               terms: int = 9, band_rows: int | None = None, holdout_every: int = 0,
+               linear: bool = False, layers: bool = True,
+               progress: Callable[[str, int], Progress] | None = None,
+               runner: BandRunner | None = None) -> FitResult:
+    """Fit the models ``keys`` (of :data:`MODEL_KEYS`) in one pass; planes go to ``scratch``.
+
+    ``holdout_every > 0`` also fits without every ``holdout_every``-th light (from the first)
+    and reports the PSNR of each model on those lights (``{"heldOut", "psnr", "meanPsnr",
+    "medianPsnr"}`` per model; predictions from the float coefficients, before 8-bit storage).
+    The photometric models (``normals``, ``ward``) fit the values as stored (``linear=False``:
+    their layers say ``inputColorSpace: "display"``, shaded as they are) or decoded from sRGB to
+    linear light first (``linear=True``: ``"linear"`` layers, encoded for display by the
+    viewer; their report compares the display encoding of the prediction).  PTM and HSH always
+    fit the stored values, which the viewer shows as they are.
+    ``layers=False`` skips the layers (the report only).  ``runner`` solves the bands elsewhere
+    (:class:`~lanterna.tiler.fit.cluster.DaskRunner`); results are consumed in order, so the
+    output is the same as the local loop's.  ``progress(label, total)`` makes a
+    progress reporter per stage.
+
+    Raises
+    ------
+    ValueError
+        When the lights do not determine a model, or shapes disagree.
+    """
+    n, h, w, _ = images.shape
+    if lights.shape != (n, 3):
+        raise ValueError(f"{n} images but lights of shape {lights.shape}")
+    unknown = [k for k in keys if k not in MODEL_KEYS]
+    if unknown:
+        raise ValueError(f"unknown model(s) {unknown}")
+    rows = band_rows or auto_band_rows(n, w)
+    full = _Solver(lights, keys, terms, linear)
+    held = np.arange(0, n, holdout_every) if holdout_every else np.zeros(0, np.intp)
+    train = np.setdiff1d(np.arange(n), held)
+    loo = _Solver(lights[train], keys, terms, linear) if len(held) else None
+    sse = {k: np.zeros(len(held)) for k in keys}
+    sinks = _Sinks(scratch, w, h)
+    bar = progress("fitting " + ", ".join(keys), h) if progress else None
+    spans = [(y0, min(h, y0 + rows)) for y0 in range(0, h, rows)]
+    step = _Step(full, loo, held, train, layers)
+    if runner is None:
+        results: Iterable[_StepResult] = (step(band) for band in _prefetched(images, spans))
+    else:
+        results = runner.bands(images, spans, step)
+    for (_, y1), (outs, band_sse) in zip(spans, results, strict=True):
+        if outs is not None:
+            sinks.take(outs, keys)
+        for k in keys:
+            sse[k] += band_sse[k]
+        if bar:
+            bar.update(y1)
+    if hasattr(images, "close"):
+        images.close()  # the pass is over: free the decoders before quantising and tiling
+    space = "linear" if linear else "display"
+    fitted = sinks.finish(keys, terms, space, progress) if layers else {}
+    quality = {}
+    for k in keys if len(held) else ():
+        scores = [10.0 * math.log10(h * w * 3 / s) if s > 0 else math.inf for s in sse[k]]
+        quality[k] = {"heldOut": [int(i) for i in held], "psnr": [round(s, 3) for s in scores],
+                      "meanPsnr": round(float(np.mean(scores)), 3),
+                      "medianPsnr": round(float(np.median(scores)), 3)}
+    return FitResult(fitted, quality, rows)
+
+
+def _prefetched(images: Images, spans: Sequence[tuple[int, int]]
+                ) -> Iterator[npt.NDArray[np.float32]]:
+    """Yield the bands in order, reading the next one in a thread while this one is solved.
+
+    libvips decodes without the GIL, so decoding overlaps the numpy work; two bands are held.
+    """
+    def read(span: tuple[int, int]) -> npt.NDArray[np.float32]:
+        return np.asarray(images[:, span[0]:span[1]], np.float32)
+
+    with ThreadPoolExecutor(max_workers=1, thread_name_prefix="lanterna-read") as pool:
+        ahead = pool.submit(read, spans[0]) if spans else None
+        for i in range(len(spans)):
+            assert ahead is not None
+            band = ahead.result()
+            ahead = pool.submit(read, spans[i + 1]) if i + 1 < len(spans) else None
+            yield band
+
+
+class _Sinks:
+    """Where each band's outputs go: plane files, or a spill for the globally quantised ones."""
+
+    def __init__(self, scratch: Path, width: int, height: int) -> None:
+        self.scratch, self.width, self.height = Path(scratch), width, height
+        self.writers: dict[str, StripTiffWriter] = {}
+        self.spills: dict[str, _Spill] = {}
+
+    def _write(self, name: str, rows: npt.NDArray[np.uint8]) -> None:
+        if name not in self.writers:
+            bands = 3 if rows.ndim == 3 else 1
+            self.writers[name] = StripTiffWriter(self.scratch / f"{name}.tif", self.width,
+                                                 self.height, bands)
+        self.writers[name].write(rows)
+
+    def _spill(self, name: str, values: npt.NDArray[np.float32]) -> None:
+        if name not in self.spills:
+            self.spills[name] = _Spill(self.scratch / f"{name}.f32")
+        self.spills[name].append(values)
+
+    def take(self, outs: dict[str, fb.Out], keys: Sequence[str]) -> None:
+        for k in ("ptm", "ptm-lrgb", "hsh"):
+            if k in keys:
+                self._spill(k, outs[k]["coeffs"].astype(np.float32))
+        if "ptm-lrgb" in keys:
+            self._write("ptm-lrgb-color", outs["ptm-lrgb"]["rgb"].astype(np.uint8))
+        if {"normals", "ward"} & set(keys):
+            self._write("normals", encode_normals(outs["normals"]["normals"].astype(np.float32)))
+        if "normals" in keys:
+            self._write("albedo", _to8(outs["normals"]["albedo"]))
+        if "ward" in keys:
+            for m in ("kd", "ks", "gloss"):
+                self._write(f"ward-{m}", outs["ward"][m].astype(np.uint8))
+
+    def finish(self, keys: Sequence[str], terms: int, space: str,
+               progress: Callable[[str, int], Progress] | None) -> dict[str, PlaneLayer]:
+        files = {name: wr.close() for name, wr in self.writers.items()}
+        layers: dict[str, PlaneLayer] = {}
+        for k in ("ptm", "ptm-lrgb", "hsh"):
+            if k in keys:
+                layers[k] = self._quantise(k, terms, files, progress)
+        if "normals" in keys:
+            layers["normals"] = _svbrdf([("normals", files["normals"]), ("kd", files["albedo"])],
+                                        space)
+        if "ward" in keys:
+            layers["ward"] = _svbrdf([("normals", files["normals"]), ("kd", files["ward-kd"]),
+                                      ("ks", files["ward-ks"]), ("gloss", files["ward-gloss"])],
+                                     space)
+        return layers
+
+    def _quantise(self, key: str, terms: int, files: dict[str, BandImage],
+                  progress: Callable[[str, int], Progress] | None) -> PlaneLayer:
+        """Second pass over a spill: the 8-bit planes of a PTM or HSH layer."""
+        spill = self.spills[key]
+        assert spill.lo is not None and spill.hi is not None
+        scale: Any
+        bias: Any
+        # group name -> the (term slice, channel) of the coefficient-major bands it stores
+        parts: dict[str, tuple[slice, int | None]]
+        if key == "hsh":
+            scale, bias = hsh_quantisation(spill.lo, spill.hi)
+            parts = {f"t{t}": (slice(t, t + 1), None) for t in range(terms)}
+        else:
+            scale, bias = ptm_quantisation(spill.lo, spill.hi)
+            thirds = [slice(3 * g, 3 * g + 3) for g in range(2)]
+            parts = ({f"c{g}": (k, None) for g, k in enumerate(thirds)} if key == "ptm-lrgb"
+                     else {f"{c}{g}": (k, ci) for ci, c in enumerate("rgb")
+                           for g, k in enumerate(thirds)})
+        quantize = hsh_quantize if key == "hsh" else ptm_quantize
+        writers = {g: StripTiffWriter(self.scratch / f"{key}-{g}.tif", self.width, self.height,
+                                      3) for g in parts}
+        bar = progress(f"quantising {key}", self.height) if progress else None
+        done = 0
+        for values in spill.bands():  # (K, b, W[, 3])
+            per_term = (-1,) + (1,) * (values.ndim - 1)
+            q = quantize(values, scale.reshape(per_term), bias.reshape(per_term))
+            for g, (k, channel) in parts.items():
+                part = q[k] if channel is None else q[k, :, :, channel]  # (terms, b, W[, 3])
+                # an HSH term holds its R, G, B; a PTM group three terms of one channel
+                writers[g].write(part[0] if key == "hsh" else np.moveaxis(part, 0, -1))
+            done += values.shape[1]
+            if bar:
+                bar.update(done)
+        planes = {g: wr.close() for g, wr in writers.items()}
+        if key == "hsh":
+            return hsh_plane_layer([float(s) for s in scale],
+                                   [-float(b) / float(s) for s, b in zip(scale, bias, strict=True)],
+                                   lambda t: planes[f"t{t}"])
+        colorspace = "lrgb" if key == "ptm-lrgb" else "rgb"
+        return ptm_plane_layer(
+            colorspace, scale, bias,
+            lambda c, k: planes[f"c{k.start // 3}" if c is None else f"{'rgb'[c]}{k.start // 3}"],
+            files.get("ptm-lrgb-color"))
+
+
+def _to8(values: npt.NDArray[np.generic]) -> npt.NDArray[np.uint8]:
+    out: npt.NDArray[np.uint8] = np.clip(np.round(np.asarray(values, np.float64) * 255.0), 0,
+                                         255).astype(np.uint8)
+    return out
+
+
+def _svbrdf(maps: list[tuple[str, BandImage]], space: str) -> PlaneLayer:
+    """A shape + material layer from fitted maps (as :func:`~.layers.add_svbrdf_layer`)."""
+    groups = []
+    for name, data in maps:
+        channels, scale, bias = SVBRDF_MAPS[name]
+        groups.append(PlaneGroup(channels, data, scale, bias))
+    return PlaneLayer("svbrdf", groups, group_names=[name for name, _ in maps],
+                      extra={"glossLimits": list(GLOSS_LIMITS), "inputColorSpace": space})

@@ -1,0 +1,209 @@
+"""Per-pixel Lambert + isotropic Ward fit with the normal fixed (variable projection).
+
+The model is exactly the viewer's ``svbrdf`` radiance (``docs/rendering.md``, ``E = π`` so kd is
+the apparent albedo), in linear RGB::
+
+    cosi = max(0, n·l),  cosr = max(n_z, 1e-4),  h = normalize(l + (0, 0, 1)),
+    nh = max(n·h, 1e-4),  tan²θh = (1 − nh²)/nh²,
+    I = kd·cosi + ks·exp(−tan²θh/α²)·√(cosi/cosr)/(4α²)
+
+For a fixed α, ``I`` is linear in (kd, ks) per channel, so each α of a log-spaced grid costs one
+2×2 solve per pixel shared by the three channels (rti-formats.md §4.3); the α with the smallest
+SSE is kept.
+
+By default the stack values (0–1, as stored) are taken as ``I``, like the PTM/HSH fits and the
+29.0 dB baseline of rti-formats.md, and kd/ks are written ``inputColorSpace: "display"``, which the
+viewer shades as they are: :func:`predict_ward` returns ``clamp01(I)``, exactly what it shows.
+``lanterna fit --fit-space linear`` decodes the stack to linear light first and writes
+``"linear"`` maps (measured on the sRGB JPEG Löwenkopf: 26.8 dB vs 29.3 dB).  See
+``docs/fitting.md``.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+import numpy.typing as npt
+
+from lanterna.tiler.inputs.stack import StackReader
+
+#: ``glossLimits`` of the written layer and the range of the α grid.
+GLOSS_LIMITS = (0.03, 0.6)
+#: Number of α values tried (log-spaced, snapped to the 8-bit gloss levels).
+ALPHA_STEPS = 24
+#: Samples with ``n·l`` below this are shadowed/grazing and excluded.
+MIN_COSI = 0.05
+#: Samples with any channel at or above this (stack units, 0–1) are saturated and excluded.
+SATURATED = 0.99
+
+
+def alpha_grid(steps: int = ALPHA_STEPS,
+               limits: tuple[float, float] = GLOSS_LIMITS) -> npt.NDArray[np.float64]:
+    """Log-spaced α in ``limits``, snapped to the 8-bit gloss levels (so quantising is exact)."""
+    lo, hi = limits
+    raw = np.geomspace(lo, hi, steps)
+    levels = np.unique(np.round((raw - lo) / (hi - lo) * 255.0))
+    grid: npt.NDArray[np.float64] = lo + levels / 255.0 * (hi - lo)
+    return grid
+
+
+def ward_basis(normals: npt.NDArray[np.floating], lights: npt.NDArray[np.floating],
+               alpha: npt.NDArray[np.floating] | float
+               ) -> tuple[npt.NDArray[np.float64], npt.NDArray[np.float64]]:
+    """Return the two basis values ``(cosi, ward)`` with ``I = kd·cosi + ks·ward``.
+
+    ``normals`` (..., 3) unit, ``lights`` (N, 3) unit, ``alpha`` scalar or broadcastable to
+    ``normals.shape[:-1]``; results have shape ``(N, ...)``.
+    """
+    nrm = np.asarray(normals, np.float64)
+    lf = np.asarray(lights, np.float64)
+    half = lf + np.array([0.0, 0.0, 1.0])
+    half /= np.maximum(np.linalg.norm(half, axis=1, keepdims=True), 1e-12)
+    cosi = np.maximum(np.einsum("nc,...c->n...", lf, nrm), 0.0)
+    cosr = np.maximum(nrm[..., 2], 1e-4)
+    nh = np.maximum(np.einsum("nc,...c->n...", half, nrm), 1e-4)
+    tan2 = (1.0 - nh * nh) / (nh * nh)
+    a2 = np.asarray(alpha, np.float64) ** 2
+    ward = np.exp(-tan2 / a2) * np.sqrt(cosi / cosr) / (4.0 * a2)
+    return cosi, ward
+
+
+@dataclass(frozen=True)
+class Ward:
+    """A fitted Ward layer: normals (H, W, 3) float, and the uint8 maps the viewer reads.
+
+    ``kd``/``ks`` (H, W, 3) linear 0–1 as ``round(255·v)``; ``gloss`` (H, W) with
+    ``α = lo + gloss/255·(hi − lo)``, ``(lo, hi) = gloss_limits``.
+    """
+
+    normals: npt.NDArray[np.float32]
+    kd: npt.NDArray[np.uint8]
+    ks: npt.NDArray[np.uint8]
+    gloss: npt.NDArray[np.uint8]
+    gloss_limits: tuple[float, float] = GLOSS_LIMITS
+
+    def alpha(self) -> npt.NDArray[np.float64]:
+        lo, hi = self.gloss_limits
+        out: npt.NDArray[np.float64] = lo + self.gloss.astype(np.float64) / 255.0 * (hi - lo)
+        return out
+
+
+def fit_ward(stack: npt.NDArray[np.floating] | StackReader, lights: npt.NDArray[np.floating],
+             normals: npt.NDArray[np.floating], *, alphas: npt.NDArray[np.float64] | None = None,
+             band_rows: int = 32
+             ) -> tuple[npt.NDArray[np.float32], npt.NDArray[np.float32], npt.NDArray[np.float32]]:
+    """Fit Lambert + isotropic Ward per pixel with the normal fixed.
+
+    Parameters
+    ----------
+    stack : ndarray, shape (N, H, W, 3)
+        Float 0–1, taken as linear radiance as stored (see the module docstring), or a
+        :class:`~lanterna.tiler.inputs.stack.StackReader` read band by band.
+    lights : ndarray, shape (N, 3)
+        Unit light directions.
+    normals : ndarray, shape (H, W, 3)
+        Unit normals (x right, y up, z toward the camera).
+    alphas : ndarray, shape (A,), optional
+        α grid (default :func:`alpha_grid`).
+
+    Returns
+    -------
+    kd, ks : ndarray, shape (H, W, 3), float32, linear, ``kd ≥ 0``, ``ks ≥ 0``
+    alpha : ndarray, shape (H, W), float32, one of ``alphas``
+
+    ``ks`` is capped at 1 (the stored range), with kd refitted for the capped value.
+    Samples with ``n·l < MIN_COSI`` or any channel ``≥ SATURATED`` are excluded.  Per α, the
+    per-pixel normal equations ``[[Σaa, Σab], [Σab, Σbb]]·(kd_c, ks_c) = (Σa·y_c, Σb·y_c)``
+    (``a = cosi``, ``b`` the Ward term) are solved for the three channels at once; a channel
+    with ``ks < 0`` falls back to Lambert (``ks = 0``), one with ``kd < 0`` to ``kd = 0``.
+    Rows are processed in bands of ``band_rows``, so temporaries are ``O(N·band·W)``.
+    """
+    n, h, w, _ = stack.shape
+    if lights.shape != (n, 3) or normals.shape != (h, w, 3):
+        raise ValueError(f"stack {stack.shape}, lights {lights.shape}, normals {normals.shape}")
+    grid = alpha_grid() if alphas is None else np.asarray(alphas, np.float64)
+    kd_out = np.empty((h, w, 3), np.float32)
+    ks_out = np.empty((h, w, 3), np.float32)
+    al_out = np.empty((h, w), np.float32)
+    for y0 in range(0, h, band_rows):
+        raw = np.asarray(stack[:, y0:y0 + band_rows], np.float64)  # (N, b, W, 3)
+        b = raw.shape[1]
+        nrm = np.asarray(normals[y0:y0 + band_rows], np.float64)
+        cosi0, _ = ward_basis(nrm, lights, 1.0)
+        valid = (cosi0 >= MIN_COSI) & (raw.max(axis=3) < SATURATED)  # (N, b, W)
+        y = raw * valid[..., None]
+        yy = np.einsum("nbwc,nbwc->bwc", y, y)
+        a = cosi0 * valid
+        saa = np.einsum("nbw,nbw->bw", a, a)
+        say = np.einsum("nbw,nbwc->bwc", a, y)
+        best = np.full((b, w), np.inf)
+        kd_b = np.zeros((b, w, 3))
+        ks_b = np.zeros((b, w, 3))
+        al_b = np.full((b, w), grid[-1])
+        # Lambert-only solution (shared by every α's fallback)
+        kd_l = np.maximum(say / np.maximum(saa, 1e-12)[..., None], 0.0)
+        for alpha in grid:
+            _, bw = ward_basis(nrm, lights, alpha)
+            bw *= valid
+            sab = np.einsum("nbw,nbw->bw", a, bw)
+            sbb = np.einsum("nbw,nbw->bw", bw, bw)
+            sby = np.einsum("nbw,nbwc->bwc", bw, y)
+            det = saa * sbb - sab * sab
+            ok = det > 1e-12 * np.maximum(saa * sbb, 1e-30)
+            inv = np.where(ok, 1.0 / np.where(ok, det, 1.0), 0.0)[..., None]
+            kd = (sbb[..., None] * say - sab[..., None] * sby) * inv
+            ks = (saa[..., None] * sby - sab[..., None] * say) * inv
+            # kd < 0: specular only; ks < 0 (or singular): Lambert
+            ks_only = np.maximum(sby / np.maximum(sbb, 1e-30)[..., None], 0.0)
+            neg_kd = kd < 0
+            kd = np.where(neg_kd, 0.0, kd)
+            ks = np.where(neg_kd, ks_only, ks)
+            fall = (ks < 0) | ~ok[..., None]
+            kd = np.where(fall, kd_l, kd)
+            ks = np.where(fall, 0.0, ks)
+            # ks is stored 0–1: cap it and refit kd for the capped ks
+            over = ks > 1.0
+            kd_capped = (say - sab[..., None]) / np.maximum(saa, 1e-12)[..., None]
+            kd = np.where(over, np.maximum(kd_capped, 0.0), kd)
+            ks = np.where(over, 1.0, ks)
+            sse = (yy - 2 * (kd * say + ks * sby) + kd * kd * saa[..., None]
+                   + 2 * kd * ks * sab[..., None] + ks * ks * sbb[..., None]).sum(axis=2)
+            better = sse < best
+            best = np.where(better, sse, best)
+            kd_b = np.where(better[..., None], kd, kd_b)
+            ks_b = np.where(better[..., None], ks, ks_b)
+            al_b = np.where(better, alpha, al_b)
+        kd_out[y0:y0 + b] = kd_b
+        ks_out[y0:y0 + b] = ks_b
+        al_out[y0:y0 + b] = al_b
+    return kd_out, ks_out, al_out
+
+
+def _to8(values: npt.ArrayLike) -> npt.NDArray[np.uint8]:
+    return np.clip(np.round(np.asarray(values, np.float64) * 255.0), 0, 255).astype(np.uint8)
+
+
+def quantize_ward(normals: npt.NDArray[np.floating], kd: npt.NDArray[np.floating],
+                  ks: npt.NDArray[np.floating], alpha: npt.NDArray[np.floating],
+                  gloss_limits: tuple[float, float] = GLOSS_LIMITS) -> Ward:
+    """Quantise the fitted maps to the uint8 layer maps (kd/ks linear 0–1, gloss via limits)."""
+    lo, hi = gloss_limits
+    return Ward(np.asarray(normals, np.float32), _to8(kd), _to8(ks),
+                _to8((np.asarray(alpha, np.float64) - lo) / (hi - lo)), (lo, hi))
+
+
+def render_ward(normals: npt.NDArray[np.floating], kd: npt.NDArray[np.floating],
+                ks: npt.NDArray[np.floating], alpha: npt.NDArray[np.floating],
+                light: npt.NDArray[np.floating]) -> npt.NDArray[np.float64]:
+    """Return the linear radiance ``I`` (H, W, 3) of the viewer's Ward model under ``light``."""
+    cosi, ward = ward_basis(normals, np.asarray(light, np.float64)[None], alpha)
+    out: npt.NDArray[np.float64] = (np.asarray(kd, np.float64) * cosi[0][..., None]
+                                    + np.asarray(ks, np.float64) * ward[0][..., None])
+    return out
+
+
+def predict_ward(model: Ward, light: npt.NDArray[np.float64]) -> npt.NDArray[np.float32]:
+    """Return ``clamp01(I)`` (H, W, 3) from the stored uint8 maps, as the viewer evaluates it."""
+    radiance = render_ward(model.normals, model.kd / 255.0, model.ks / 255.0, model.alpha(), light)
+    return np.clip(radiance, 0.0, 1.0).astype(np.float32)

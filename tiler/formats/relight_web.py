@@ -1,0 +1,220 @@
+"""Read Relight/OpenLIME web-format RTI folders (``info.json`` + ``plane_k.jpg``) as a PlaneLayer.
+
+Format (Relight ``src/rti.cpp`` ``Rti::load``/``loadData``, ``src/cli/rtibuilder.cpp``
+``saveJSON``; OpenLIME ``src/ShaderRTI.js``; notes §2.3):
+
+- ``info.json`` holds ``width``, ``height``, ``type`` (``ptm``, ``hsh``, …), ``colorspace``
+  (``rgb``, ``lrgb``, …), ``nplanes`` and ``materials[0].scale`` / ``.bias``: one value per plane.
+- Plane ``p`` is channel ``p % 3`` of the RGB image ``plane_{p // 3}.jpg`` (``format: "png"``
+  gives ``.png``); rows are top-down. A plane's value is ``(t − bias[p])·scale[p]`` with
+  ``t = texel/255``, which is Lanterna's own convention, so the texels are kept unchanged.
+- Light: x right, y up (Relight exports the same coefficients to ``.ptm`` with only a reorder).
+- ``ptm``: the basis is ``1, u, v, u², uv, v²`` (degree 1 stops after ``v``).
+  ``rgb``: planes ``3t + c`` are term ``t`` of colour ``c`` (9 or 18 planes).
+  ``lrgb``: planes 0–2 are the base colour (scale 1, bias 0), planes ``3 + t`` luminance term
+  ``t`` (6 or 9 planes); colour = base · L.
+- ``hsh``: planes ``3k + c`` are term ``k`` of colour ``c`` (``rgb`` only; 4, 9 or 16 terms).
+
+The reader regroups the planes into Lanterna's channel names and order (docs/dataset-format.md):
+PTM ``L0…L5`` / ``R0…R5, G0…G5, B0…B5`` in the basis ``lu², lv², lu·lv, lu, lv, 1`` (a degree-1
+PTM gets zero quadratic channels), HSH one group ``R{k}, G{k}, B{k}`` per term.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+import numpy.typing as npt
+import pyvips
+
+from lanterna.errors import LanternaInputError
+
+from .planes import PlaneGroup, PlaneLayer
+
+#: Relight's PTM term for each Lanterna PTM coefficient (``lu², lv², lu·lv, lu, lv, 1``).
+PTM_TERM_OF = (3, 5, 4, 1, 2, 0)
+#: Accepted ``nplanes`` per (type, colorspace).
+NPLANES = {("ptm", "lrgb"): (6, 9), ("ptm", "rgb"): (9, 18), ("hsh", "rgb"): (12, 27, 48)}
+_OTHER_TYPES = ("rbf", "bilinear", "bln", "sh", "h", "dmd", "neural", "img")
+_OTHER_COLORSPACES = ("ycc", "mrgb", "mycc")
+
+
+def read_relight(folder: str | Path) -> PlaneLayer:
+    """Read a Relight web-format folder (or its ``info.json``) of type ``ptm`` or ``hsh``.
+
+    Returns
+    -------
+    PlaneLayer
+        ``layer_type`` ``"ptm"`` (``colorspace`` ``"lrgb"`` or ``"rgb"``) or ``"hsh"``
+        (``terms`` 4, 9 or 16), groups in Lanterna's channel order with the folder's bytes and
+        per-channel scale/bias. ``extra`` records the source ``nplanes`` and ``quality``.
+
+    Raises
+    ------
+    LanternaInputError
+        If ``info.json`` or a plane is missing or unreadable, the type or colorspace is not
+        supported, or the planes disagree with ``info.json``.
+    """
+    src = Path(folder)
+    info_path = src if src.name == "info.json" and src.is_file() else src / "info.json"
+    if not info_path.parent.is_dir():
+        raise LanternaInputError(src, "folder not found")
+    if not info_path.is_file():
+        raise LanternaInputError(src, "no info.json: not a Relight web-format folder")
+    info = _load_info(info_path)
+    rtype, colorspace, width, height, nplanes = _check_info(info, info_path)
+    scale, bias = _quantisation(info, nplanes, info_path)
+    ext = _plane_format(info, info_path)
+    planes = np.stack([c for i in range(nplanes // 3)
+                       for c in _load_plane(info_path.parent, i, ext, width, height)])
+    extra: dict[str, object] = {"source": "relight", "nplanes": nplanes}
+    if isinstance(info.get("quality"), int):
+        extra["quality"] = info["quality"]
+    if rtype == "hsh":
+        rgb = [list(range(3 * k, 3 * k + 3)) for k in range(nplanes // 3)]
+        groups = [PlaneGroup([f"R{k}", f"G{k}", f"B{k}"], _stack(planes, rgb[k]),
+                             scale[3 * k : 3 * k + 3], bias[3 * k : 3 * k + 3])
+                  for k in range(nplanes // 3)]
+        return PlaneLayer("hsh", groups, None, nplanes // 3, extra)
+    if colorspace == "lrgb":
+        lum = [3 + t for t in PTM_TERM_OF]  # Relight plane of each Lanterna L channel
+        groups = [_ptm_group(planes, [f"L{j}" for j in range(g, g + 3)], lum[g : g + 3],
+                             scale, bias) for g in (0, 3)]
+        groups.append(PlaneGroup(["R", "G", "B"], _stack(planes, [0, 1, 2]), scale[:3], bias[:3]))
+    else:
+        groups = []
+        for c, name in enumerate("RGB"):
+            for g in (0, 3):
+                idx = [3 * t + c for t in PTM_TERM_OF[g : g + 3]]
+                groups.append(_ptm_group(planes, [f"{name}{j}" for j in range(g, g + 3)], idx,
+                                         scale, bias))
+    return PlaneLayer("ptm", groups, colorspace, None, extra)
+
+
+def _load_info(path: Path) -> dict[str, Any]:
+    try:
+        info = json.loads(path.read_text(encoding="utf-8"))
+    except OSError as exc:
+        raise LanternaInputError(path, f"cannot read file ({exc.strerror})") from None
+    except (UnicodeDecodeError, json.JSONDecodeError) as exc:
+        raise LanternaInputError(path, f"not valid JSON ({exc})") from None
+    if not isinstance(info, dict):
+        raise LanternaInputError(path, "must hold a JSON object")
+    return info
+
+
+def _int_field(info: dict[str, Any], key: str, path: Path) -> int:
+    value = info.get(key)
+    if isinstance(value, str) and value.strip().isdigit():
+        value = int(value)
+    if isinstance(value, bool) or not isinstance(value, int):
+        raise LanternaInputError(path, f"{key!r} must be an integer, got {value!r}")
+    return value
+
+
+def _check_info(info: dict[str, Any], path: Path) -> tuple[str, str, int, int, int]:
+    rtype, colorspace = info.get("type"), info.get("colorspace")
+    if rtype in _OTHER_TYPES:
+        raise LanternaInputError(path, f"unsupported Relight type {rtype!r}; only ptm and hsh "
+                                 "are supported")
+    if rtype not in ("ptm", "hsh"):
+        raise LanternaInputError(path, f"unknown Relight type {rtype!r}; expected ptm or hsh")
+    if colorspace in _OTHER_COLORSPACES:
+        raise LanternaInputError(path, f"unsupported colorspace {colorspace!r}; only rgb and lrgb "
+                                 "are supported")
+    if colorspace not in ("rgb", "lrgb"):
+        raise LanternaInputError(path, f"unknown colorspace {colorspace!r}; expected rgb or lrgb")
+    if rtype == "hsh" and colorspace == "lrgb":
+        raise LanternaInputError(path, "hsh with colorspace lrgb is not supported (export rgb)")
+    width, height = _int_field(info, "width", path), _int_field(info, "height", path)
+    if width <= 0 or height <= 0:
+        raise LanternaInputError(path, f"image size must be positive, got {width}x{height}")
+    nplanes = _int_field(info, "nplanes", path)
+    allowed = NPLANES[(rtype, colorspace)]
+    if nplanes not in allowed:
+        raise LanternaInputError(path, f"{rtype} {colorspace} needs nplanes "
+                                 f"{' or '.join(map(str, allowed))}, got {nplanes}")
+    return rtype, colorspace, width, height, nplanes
+
+
+def _quantisation(info: dict[str, Any], nplanes: int, path: Path) -> tuple[list[float],
+                                                                             list[float]]:
+    """Return per-plane scale and bias from ``materials[0]`` (or top-level ``scale``/``bias``)."""
+    materials = info.get("materials")
+    if isinstance(materials, list) and materials:
+        if len(materials) > 1:
+            raise LanternaInputError(path, f"{len(materials)} materials; only one is supported")
+        where, holder = "materials[0]", materials[0]
+        if not isinstance(holder, dict):
+            raise LanternaInputError(path, "materials[0] must be a JSON object")
+    else:
+        where, holder = "info.json", info
+    out = []
+    for key in ("scale", "bias"):
+        values = holder.get(key)
+        if not isinstance(values, list) or len(values) != nplanes:
+            got = f"{len(values)} values" if isinstance(values, list) else repr(values)
+            raise LanternaInputError(path, f"{where}.{key} must list {nplanes} numbers "
+                                     f"(one per plane), got {got}")
+        if not all(isinstance(v, int | float) and not isinstance(v, bool)
+                   and math.isfinite(v) for v in values):
+            raise LanternaInputError(path, f"{where}.{key} holds a non-numeric or non-finite "
+                                     "value")
+        out.append([float(v) for v in values])
+    return out[0], out[1]
+
+
+def _plane_format(info: dict[str, Any], path: Path) -> str:
+    fmt = info.get("format", "jpg")
+    if fmt not in ("jpg", "png"):
+        raise LanternaInputError(path, f"unsupported plane format {fmt!r}; expected jpg or png")
+    return str(fmt)
+
+
+def _load_plane(folder: Path, index: int, ext: str, width: int,
+                height: int) -> list[npt.NDArray[np.uint8]]:
+    """Return the three ``(H, W)`` channels of ``plane_{index}.{ext}``."""
+    path = folder / f"plane_{index}.{ext}"
+    if not path.is_file():
+        tiled = any((folder / f"plane_{index}{s}").exists() for s in (".dzi", "_files", ""))
+        hint = "; tiled layouts (deepzoom, google, …) are not supported" if tiled else ""
+        raise LanternaInputError(path, f"plane {index} is missing{hint}")
+    try:
+        data = path.read_bytes()
+    except OSError as exc:
+        raise LanternaInputError(path, f"cannot read file ({exc.strerror})") from None
+    try:
+        # From a buffer, not a file name: libvips caches loads by name, so a plane rewritten in
+        # place would come back stale.
+        image = pyvips.Image.new_from_buffer(data, "", fail_on="warning")
+        bands, w, h, fmt = image.bands, image.width, image.height, image.format
+        if bands != 3 or fmt != "uchar":
+            raise LanternaInputError(path, f"plane has {bands} band(s) of {fmt}; "
+                                     "expected 8-bit RGB")
+        if (w, h) != (width, height):
+            raise LanternaInputError(path, f"plane is {w}x{h}, info.json says {width}x{height}")
+        pixels = image.write_to_memory()
+    except pyvips.Error as exc:
+        reason = " ".join(str(exc.message or exc).split())[:80]
+        raise LanternaInputError(path, f"cannot decode plane ({reason})") from None
+    rgb = np.frombuffer(pixels, dtype=np.uint8).reshape(height, width, 3)
+    return [rgb[..., c] for c in range(3)]
+
+
+def _stack(planes: npt.NDArray[np.uint8], idx: list[int]) -> npt.NDArray[np.uint8]:
+    return np.ascontiguousarray(np.stack([planes[i] for i in idx], axis=-1))
+
+
+def _ptm_group(planes: npt.NDArray[np.uint8], channels: list[str], idx: list[int],
+               scale: list[float], bias: list[float]) -> PlaneGroup:
+    """One PTM group; planes beyond a degree-1 PTM become zero channels (scale 0, bias 0)."""
+    n = planes.shape[0]
+    if all(i >= n for i in idx):
+        zeros = np.zeros(planes.shape[1:] + (3,), np.uint8)
+        return PlaneGroup(channels, zeros, [0.0] * 3, [0.0] * 3)
+    return PlaneGroup(channels, _stack(planes, idx), [scale[i] for i in idx],
+                      [bias[i] for i in idx])

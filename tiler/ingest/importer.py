@@ -1,0 +1,52 @@
+"""Turn sources (files, folders, description files, spectral bands) into one dataset."""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from pathlib import Path
+
+from lanterna.errors import LanternaInputError
+from lanterna.tiler.dataset.plan import LayerPlan, build_dataset
+from lanterna.tiler.dataset.writer import DEFAULT_BASE_URL, check_identifier
+
+from .description import plan_description
+from .sources import plan_bands, plan_source
+
+
+def import_sources(sources: Sequence[Path], out: Path, *, name: str | None = None,
+                   label: str | None = None, bands: dict[str, Path] | None = None,
+                   fusions: Sequence[Sequence[str]] = (), base_url: str = DEFAULT_BASE_URL,
+                   tile_size: int = 256, force: bool = False, tiff: bool = False) -> Path:
+    """Import sources as the layers of dataset ``out`` (in order; the first is the default).
+
+    A source is a ``.ptm``, ``.rti``, a Relight web-format folder, an image, or a dataset
+    description ``.json`` (Lanterna's or the seed paper's scene format). ``bands`` adds one grey
+    layer per spectral band, ``fusions`` one false-colour layer per band triple. ``tiff`` also
+    writes a pyramidal TIFF per image (``tiff/<image>.tif``) for the IIIF image server.
+    """
+    plans: list[LayerPlan] = []
+    fields: dict[str, str] = {}
+    for source in sources:
+        source = Path(source)
+        if source.suffix.lower() == ".json" and source.is_file():
+            desc_fields, desc_plans = plan_description(source)
+            fields = {**desc_fields, **fields}
+            plans.extend(desc_plans)
+        else:
+            plans.append(plan_source(source))
+    if bands:
+        plans.extend(plan_bands(bands, fusions))
+    elif fusions:
+        raise LanternaInputError(None, "--fusion needs spectral bands (--band NAME=FILE)")
+    first = Path(sources[0]) if sources else Path(out)
+    ds_name = check_identifier(name or fields.get("name") or _safe_name(Path(out).name),
+                               "dataset name")
+    ds_label = label or fields.get("label") or first.stem
+    return build_dataset(plans, out, name=ds_name, label=ds_label, base_url=base_url,
+                         tile_size=tile_size, force=force, summary=fields.get("summary"),
+                         tiff=tiff)
+
+
+def _safe_name(stem: str) -> str:
+    cleaned = "".join(ch if ch.isalnum() or ch in "_-" else "_" for ch in stem)
+    return cleaned or "dataset"
