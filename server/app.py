@@ -19,12 +19,12 @@ from typing import Any
 from flask import Flask, Response, abort, redirect, request, send_from_directory
 from werkzeug.wrappers import Response as BaseResponse
 
+from lanterna.tiler.iiif.spec import IMAGE_CONTEXT, PRESENTATION_CONTEXT
+
 from . import image_api
 from .errors import register_error_handlers
 from .safe_path import contained_dir, contained_file, raw_path_is_safe
 
-IMAGE_CONTEXT = "http://iiif.io/api/image/3/context.json"
-PRESENTATION_CONTEXT = "http://iiif.io/api/presentation/3/context.json"
 REPO_VIEWER = Path(__file__).resolve().parent.parent / "plugin" / "dist" / "viewer"
 _MEDIA = {".png": "image/png", ".jpg": "image/jpeg", ".jpeg": "image/jpeg", ".json": None}
 

@@ -7,14 +7,14 @@ says only that. Redirects raised by routing (3xx) pass through untouched.
 
 from __future__ import annotations
 
+from http import HTTPStatus
+
 from flask import Flask, Response
 from werkzeug.exceptions import HTTPException
 
 
 def plain_error(status: int, message: str) -> Response:
     """Return a ``text/plain`` error response: the status line, and a reason if given."""
-    from http import HTTPStatus
-
     try:
         phrase = HTTPStatus(status).phrase
     except ValueError:

@@ -26,14 +26,16 @@ from flask import Blueprint, Flask, Response, current_app, redirect, request, ur
 from werkzeug.http import is_resource_modified
 from werkzeug.wrappers import Response as BaseResponse
 
-from . import render
+from lanterna.tiler.iiif import geometry as geo
+from lanterna.tiler.iiif.spec import IMAGE_CONTEXT, IMAGE_PROTOCOL, image_profile_uri
+
+from . import image_response
 from .errors import plain_error
 from .image_request import FORMATS, Limits, RequestError, max_size, parse_image_request
 from .safe_path import contained_file
 
-IMAGE_CONTEXT = "http://iiif.io/api/image/3/context.json"
 PROFILE = "level1"
-PROFILE_URI = f"http://iiif.io/api/image/3/{PROFILE}.json"
+PROFILE_URI = image_profile_uri(PROFILE)
 EXTRA_FEATURES = ["regionByPct", "sizeByPct", "sizeByConfinedWh", "rotationBy90s", "mirroring",
                   "profileLinkHeader", "canonicalLinkHeader"]
 EXTRA_QUALITIES = ["color", "gray", "bitonal"]
@@ -142,16 +144,14 @@ def base(dataset: str, image: str) -> BaseResponse:
 def info_document(tiff: Path, image: str, service_id: str, limits: Limits,
                   tile_size: int) -> dict[str, Any]:
     """Return the info.json of the TIFF ``tiff`` served at ``service_id``."""
-    from lanterna.tiler.iiif import geometry as geo
-
-    width, height = render.tiff_levels(tiff)[0]
+    width, height = image_response.tiff_levels(tiff)[0]
     factors = geo.scale_factors(width, height, tile_size)
     top = max_size(width, height, limits)
     sizes = [geo.level_size(width, height, f) for f in reversed(factors)]
     formats = [f for f in FORMATS if f != "jpg"]
     doc: dict[str, Any] = {
         "@context": IMAGE_CONTEXT, "id": service_id, "type": "ImageService3",
-        "protocol": "http://iiif.io/api/image", "profile": PROFILE,
+        "protocol": IMAGE_PROTOCOL, "profile": PROFILE,
         "width": width, "height": height,
         "maxWidth": limits.max_width, "maxHeight": limits.max_height, "maxArea": limits.max_area,
         "sizes": [{"width": w, "height": h} for w, h in sizes if w <= top[0] and h <= top[1]],
@@ -189,11 +189,11 @@ def image_request(dataset: str, image: str, region: str, size: str, rotation: st
                   quality_format: str) -> Response | BaseResponse:
     """Serve one image request: parse, check limits, read the right level, encode."""
     tiff = _tiff(dataset, image)
-    levels = render.tiff_levels(tiff)
+    levels = image_response.tiff_levels(tiff)
     width, height = levels[0]
     limits = _limits()
     req = parse_image_request(region, size, rotation, quality_format, width, height, limits)
-    plan = render.plan_read(levels, req)
+    plan = image_response.plan_read(levels, req)
     if plan.w * plan.h > WORK_FACTOR * limits.max_area:
         raise RequestError(400, "no pyramid level of this image is small enough for that size")
     canonical = req.canonical(width, height, limits)
@@ -202,8 +202,8 @@ def image_request(dataset: str, image: str, region: str, size: str, rotation: st
     if _not_modified(tiff, etag):
         resp: Response | BaseResponse = Response(status=304)
     else:
-        out = render.render(tiff, req, plan)
+        out = image_response.compute_image(tiff, req, plan)
         lossless = _source_format(tiff, image) == "png"
-        resp = Response(render.encode(out, req.format, lossless=lossless),
+        resp = Response(image_response.encode(out, req.format, lossless=lossless),
                         mimetype=FORMATS[req.format])
     return _cached(resp, tiff, etag, f"{base_uri}/{canonical}")

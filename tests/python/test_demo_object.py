@@ -128,8 +128,8 @@ def test_ptm_is_the_least_squares_optimum_up_to_quantisation(
     target = 255.0 * lum / np.where(peak > 0, peak, 1.0)
     sol = np.linalg.lstsq(ptm_design_matrix(lights), target.reshape(len(lights), -1), rcond=None)
     exact = sol[0].T.reshape(H, W, 6)
-    err = np.abs(ptm.dequantized() - exact)
-    assert np.all(err <= ptm.scale / 2.0 + 1e-2)
+    err = np.abs(ptm.dequantized() - exact / 255.0)
+    assert np.all(err <= (ptm.scale / 2.0 + 1e-2) / 255.0)
 
 
 def test_light_from_left_brightens_left_facing_slopes(obj: DemoObject, ptm: Ptm) -> None:
@@ -192,8 +192,8 @@ def test_fit_recovers_exact_quadratic(colour: tuple[float, float, float]) -> Non
     ptm = fit_ptm_lrgb(images, lights, band_rows=4)
     peak = np.einsum("nk,hwk->nhw", ptm_design_matrix(lights), a).max(axis=0)
     expected = 255.0 * a / peak[..., None]  # ptmfit: luminance normalised by its peak
-    err = np.abs(ptm.dequantized() - expected)
-    assert np.all(err <= ptm.scale / 2.0 + 1e-3)
+    err = np.abs(ptm.dequantized() - expected / 255.0)
+    assert np.all(err <= (ptm.scale / 2.0 + 1e-3) / 255.0)
     rgb = 255.0 * peak[..., None] * np.asarray(colour)  # Σ c·Yn / Σ Yn² = colour · peak
     assert ptm.rgb is not None
     assert np.all(np.abs(ptm.rgb.astype(np.float64) - rgb) <= 0.5 + 1e-3)
@@ -208,7 +208,7 @@ def test_fit_accepts_uint8() -> None:
     ptm = fit_ptm_lrgb(as_bytes, lights)
     ref = fit_ptm_lrgb(as_bytes / 255.0, lights)
     assert np.array_equal(ptm.rgb, ref.rgb)
-    assert np.abs(ptm.dequantized() - ref.dequantized()).max() <= ptm.scale.max()
+    assert np.abs(ptm.dequantized() - ref.dequantized()).max() <= ptm.scale.max() / 255.0
 
 
 def test_quantisation_uses_full_range_without_clipping() -> None:

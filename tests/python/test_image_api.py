@@ -256,7 +256,7 @@ def test_304_happens_before_any_pixel_work(client: FlaskClient,
     def boom(*args: object, **kwargs: object) -> None:
         raise AssertionError("rendered")
 
-    monkeypatch.setattr("lanterna.server.render.render", boom)
+    monkeypatch.setattr("lanterna.server.image_response.compute_image", boom)
     assert client.get(url, headers={"If-None-Match": etag}).status_code == 304
 
 
@@ -298,7 +298,7 @@ def test_oversized_output_is_refused_before_pixel_work(root: Path,
     def boom(*args: object, **kwargs: object) -> None:
         raise AssertionError("rendered")
 
-    monkeypatch.setattr("lanterna.server.render.render", boom)
+    monkeypatch.setattr("lanterna.server.image_response.compute_image", boom)
     client = _client(root, IIIF_MAX_AREA=10_000)
     for size in ("1000,", "pct:50", "101,100", "!500,500"):
         resp = client.get(f"{BASE}/full/{size}/0/default.jpg")
@@ -318,7 +318,7 @@ def test_tiff_without_a_pyramid_is_not_decoded_for_a_thumbnail(
 
 
 def test_encode_accepts_every_band_layout() -> None:
-    from lanterna.server.render import apply_quality, encode
+    from lanterna.server.image_response import apply_quality, encode
 
     for bands in (1, 2, 3, 4):
         img = pyvips.Image.black(8, 6, bands=bands).cast("uchar") + 100

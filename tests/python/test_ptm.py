@@ -7,8 +7,9 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from lanterna.tiler.formats.ptm import ptm_normals, read_ptm
+from lanterna.tiler.formats.ptm import read_ptm
 from lanterna.tiler.formats.ptm_model import Ptm
+from lanterna.tiler.render import ptm_normals
 from tests.python.fixtures.ptm_writer import PtmFormat, PtmPrediction, write_ptm
 
 from .ptm_fixtures import (
@@ -285,7 +286,7 @@ def test_ushabti_relights_from_the_correct_side(ushabti: Ptm, lu: float, lit_sid
     assert bright > 1.5 * dark
 
 
-# --- normals --------------------------------------------------------------------------------
+# --- normals of a file's dequantised coefficients (the reference renderer's ptm_normals) -----
 
 
 def _normal_ptm(coeff_rows: list[list[int]], scale: float = 0.1) -> Ptm:
@@ -310,7 +311,7 @@ def test_ptm_normals_match_the_maximum_of_the_quadratic() -> None:
             [b - 10, b - 10, b, b + 40, b, b],
         ]
     )
-    n = ptm_normals(ptm)
+    n = ptm_normals(ptm.dequantized())
     assert n.shape == (1, 5, 3) and n.dtype == np.float32
     np.testing.assert_allclose(np.linalg.norm(n, axis=-1), 1.0, atol=1e-6)
 
@@ -333,9 +334,10 @@ def test_ptm_normals_of_rgb_average_the_channels() -> None:
     flat = np.array([128, 128, 128, 128, 128, 228], np.uint8)  # no interior max -> (0, 0, 1)
     coeffs = np.stack([red, red, flat])[None, None]  # (1, 1, 3, 6)
     rgb = Ptm("rgb", coeffs, lrgb.scale, lrgb.bias)
-    n_red = ptm_normals(lrgb)[0, 0]
+    n_red = ptm_normals(lrgb.dequantized())[0, 0]
     mean = (2 * n_red + np.array([0, 0, 1])) / 3
-    np.testing.assert_allclose(ptm_normals(rgb)[0, 0], mean / np.linalg.norm(mean), atol=1e-6)
+    n_rgb = ptm_normals(rgb.dequantized())[0, 0]
+    np.testing.assert_allclose(n_rgb, mean / np.linalg.norm(mean), atol=1e-6)
 
 
 # --- bad input ------------------------------------------------------------------------------

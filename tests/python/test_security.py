@@ -178,7 +178,7 @@ def test_oversized_output_is_refused(base: Path) -> None:
 
 
 @pytest.mark.parametrize("path, target", [
-    ("/iiif/3/obj/pic/full/max/0/default.jpg", "lanterna.server.render.render"),
+    ("/iiif/3/obj/pic/full/max/0/default.jpg", "lanterna.server.image_response.compute_image"),
     ("/iiif/3/obj/pic/info.json", "lanterna.server.image_api.info_document"),
     ("/datasets/obj/lanterna.json", "lanterna.server.app._json_response"),
 ])

@@ -14,6 +14,7 @@ under a dome of lights (:mod:`.demo_render`):
 
 from __future__ import annotations
 
+import tempfile
 from pathlib import Path
 
 import numpy as np
@@ -27,8 +28,14 @@ from lanterna.tiler.dataset.layers import (
     add_svbrdf_layer,
 )
 from lanterna.tiler.dataset.writer import DEFAULT_BASE_URL, DatasetWriter
+from lanterna.tiler.fit.hsh import fit_hsh
+from lanterna.tiler.fit.ptm import fit_ptm_lrgb
 from lanterna.tiler.formats.layouts import encode_normals
 from lanterna.tiler.iiif.pyramid import vips_from_array
+from lanterna.tiler.overlays.build import build_overlays
+
+from .dome import demo_lights, render_stack
+from .tablet import make_demo_object
 
 DEMO_SIZE = (1536, 1152)
 N_LIGHTS = 48
@@ -64,12 +71,6 @@ def _underdrawing(width: int, height: int) -> F32:
 def build_demo(out: Path, *, base_url: str = DEFAULT_BASE_URL, force: bool = False,
                size: tuple[int, int] = DEMO_SIZE) -> Path:
     """Generate the demo object, fit its layers and write them as dataset ``out``."""
-    from lanterna.tiler.fit.hsh import fit_hsh
-    from lanterna.tiler.fit.ptm import fit_ptm_lrgb
-
-    from .dome import demo_lights, render_stack
-    from .tablet import make_demo_object
-
     width, height = size
     obj = make_demo_object(width, height, seed=0)
     lights = demo_lights(N_LIGHTS)
@@ -137,10 +138,6 @@ DEMO_TEXTS = {
 
 def _add_demo_overlays(out: Path, sketch: F32) -> None:
     """Annotate the PTM layer at four levels (patches drawn here, built by the overlay builder)."""
-    import tempfile
-
-    from lanterna.tiler.overlays.build import build_overlays
-
     h, w = sketch.shape
     cyan, magenta, gold = (40, 220, 255), (255, 60, 200), (255, 200, 40)
     with tempfile.TemporaryDirectory() as tmp:

@@ -28,8 +28,8 @@ class Ptm:
     coefficients:
         ``uint8`` array, shape ``(H, W, 6)`` for lrgb, ``(H, W, 3, 6)`` for rgb.
     scale, bias:
-        Per-coefficient dequantisation, shape ``(6,)``: ``a = (byte - bias) * scale``,
-        giving values in 0–255 units (the HP PTM convention).
+        The file's per-coefficient quantisation, shape ``(6,)``: ``a = (byte - bias) * scale``
+        in 0–255 units (the HP PTM convention); :meth:`dequantized` gives ``a/255``.
     rgb:
         ``uint8`` array ``(H, W, 3)`` for lrgb; ``None`` for rgb.
     """
@@ -66,20 +66,23 @@ class Ptm:
         return int(self.coefficients.shape[0])
 
     def dequantized(self) -> npt.NDArray[np.float32]:
-        """Return the coefficients as float32 in 0–255 units, same shape as ``coefficients``."""
+        """Return the coefficients in display units, ``a/255`` (as every dequantised value in
+        Lanterna: the planes' ``(t − bias)·scale``, HSH terms), float32, shaped as ``coefficients``.
+        """
         a = self.coefficients.astype(np.float32) - self.bias.astype(np.float32)
-        return a * self.scale.astype(np.float32)
+        return a * (self.scale.astype(np.float32) / np.float32(255.0))
 
     def relight(self, lu: float, lv: float) -> npt.NDArray[np.float32]:
         """Relight for light (lu, lv); return ``(H, W, 3)`` float32 in 0–1, clamped.
 
-        lrgb: ``rgb/255 * L/255``; rgb: ``L_c/255`` per channel (the RTIViewer convention).
+        lrgb: ``rgb/255 · L``; rgb: ``L_c`` per channel, ``L`` the polynomial of the dequantised
+        coefficients (the RTIViewer convention).
         """
         w = ptm_weights(lu, lv).astype(np.float32)
         lum = self.dequantized() @ w
         if self.colorspace == "lrgb":
             assert self.rgb is not None
-            out = self.rgb.astype(np.float32) / 255.0 * (lum / 255.0)[..., None]
+            out = self.rgb.astype(np.float32) / 255.0 * lum[..., None]
         else:
-            out = lum / 255.0
+            out = lum
         return np.clip(out, 0.0, 1.0).astype(np.float32)

@@ -27,9 +27,9 @@ import numpy as np
 import numpy.typing as npt
 import pyvips
 
-from lanterna.tiler.iiif import geometry as geo
+from . import geometry as geo
+from .spec import IMAGE_CONTEXT, IMAGE_PROTOCOL
 
-IMAGE_CONTEXT = "http://iiif.io/api/image/3/context.json"
 #: Largest side of the ``sizes`` entries we list (and so must serve as whole images).
 SIZES_LIMIT = 2048
 #: Largest side of ``full/max``: bigger images declare ``maxWidth``/``maxHeight`` = the first
@@ -181,7 +181,7 @@ def _info_json(width: int, height: int, service_id: str, fmt: str, tile_size: in
         "@context": IMAGE_CONTEXT,
         "id": service_id,
         "type": "ImageService3",
-        "protocol": "http://iiif.io/api/image",
+        "protocol": IMAGE_PROTOCOL,
         "profile": "level0",
         "width": width,
         "height": height,

@@ -1,7 +1,8 @@
-"""Render an :class:`~lanterna.server.image_request.ImageRequest` from a pyramidal TIFF.
+"""Compute the image of an :class:`~lanterna.server.image_request.ImageRequest` from a pyramidal
+TIFF (the IIIF image server's pixels; the HTTP side is :mod:`lanterna.server.image_api`).
 
 Only the pyramid level just above the output resolution is decoded, and only the tiles under the
-region: :func:`plan_read` (pure) picks the page and the pixel box, :func:`render` crops it,
+region: :func:`plan_read` (pure) picks the page and the pixel box, :func:`compute_image` crops it,
 resizes it to the exact output size (lanczos3, downsampling by less than 2), mirrors, rotates,
 applies the quality and :func:`encode` writes the format. Level ``k`` of a libvips pyramid is the
 image box-filtered by ``2^k`` with odd edge pixels dropped, so full-resolution ``x`` maps to level
@@ -78,7 +79,7 @@ def plan_read(levels: tuple[tuple[int, int], ...], req: ImageRequest) -> ReadPla
     return ReadPlan(page, x0, y0, x1 - x0, y1 - y0)
 
 
-def render(path: Path, req: ImageRequest, plan: ReadPlan) -> pyvips.Image:
+def compute_image(path: Path, req: ImageRequest, plan: ReadPlan) -> pyvips.Image:
     """Return the output image of ``req`` (before encoding), reading ``plan`` from ``path``."""
     level = pyvips.Image.new_from_file(str(path), page=plan.page, access="random",
                                        fail_on="error", revalidate=True)
