@@ -5,12 +5,10 @@ StackReader`) and, per band, solves every model twice — on all lights (the lay
 the held-out lights (the leave-one-out report, accumulated as squared errors on the held-out
 images of the same band) — so the images are decoded once whatever the number of models.
 
-Memory is bounded by the band, not the image: per-pixel encodings (normal maps, Ward maps, the
-LRGB colour plane) go straight to file-backed planes (:class:`~lanterna.tiler.formats.strip_tiff.
-StripTiffWriter`); PTM/HSH coefficients need their global range before they can be quantised,
-so their floats are appended to a scratch file (4 bytes per coefficient per pixel on disk) with
-the running min/max, and a second, sequential pass over that file writes the 8-bit planes.
-The results are :class:`~lanterna.tiler.formats.planes.PlaneLayer` s whose groups are those files.
+Memory is bounded by the band, not the image: each band's outputs go to file-backed planes or,
+for the globally quantised PTM/HSH coefficients, to a float spill quantised in a second pass
+(:mod:`.sinks`). The results are :class:`~lanterna.tiler.formats.planes.PlaneLayer` s whose
+groups are those files.
 """
 
 from __future__ import annotations
@@ -20,28 +18,21 @@ from collections.abc import Callable, Iterable, Iterator, Sequence
 from concurrent.futures import ThreadPoolExecutor
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Any, BinaryIO, Protocol
+from typing import Any, Protocol
 
 import numpy as np
 import numpy.typing as npt
 
-from lanterna.tiler.formats.layouts import (
-    SVBRDF_MAPS,
-    encode_normals,
-    hsh_plane_layer,
-    ptm_plane_layer,
-)
-from lanterna.tiler.formats.planes import PlaneGroup, PlaneLayer
-from lanterna.tiler.formats.strip_tiff import BandImage, StripTiffWriter
+from lanterna.tiler.formats.planes import PlaneLayer
 from lanterna.tiler.inputs.stack import StackReader
 from lanterna.tiler.progress import Progress
 from lanterna.tiler.render.shading import linear_to_srgb, srgb_to_linear
 
 from . import bands as fb
-from .hsh import hsh_design_matrix, hsh_pinv, hsh_quantisation, hsh_quantize
+from .hsh import hsh_design_matrix, hsh_pinv
 from .normals import check_lights
-from .ptm import ptm_design_matrix, ptm_pinv, ptm_quantisation, ptm_quantize
-from .ward import GLOSS_LIMITS
+from .ptm import ptm_design_matrix, ptm_pinv
+from .sinks import Sinks
 
 Images = npt.NDArray[np.float32] | StackReader
 Lights = npt.NDArray[np.float64]
@@ -154,38 +145,6 @@ class BandRunner(Protocol):
         ...
 
 
-class _Spill:
-    """Float coefficients appended band by band to a scratch file, with their running range."""
-
-    def __init__(self, path: Path) -> None:
-        self.path = path
-        self.file: BinaryIO = open(path, "wb")  # noqa: SIM115 - closed in finish()
-        self.lo: npt.NDArray[np.float64] | None = None
-        self.hi: npt.NDArray[np.float64] | None = None
-        self.shapes: list[tuple[int, ...]] = []
-
-    def append(self, values: npt.NDArray[np.float32]) -> None:
-        """Append a band ``(b, …, K)``; stored coefficient-major (``(K, b, …)``), so the solvers'
-        ``(K, pixels)`` products are written without a copy and reduced per row."""
-        km = np.ascontiguousarray(np.moveaxis(values, -1, 0), np.float32)
-        flat = km.reshape(km.shape[0], -1)
-        lo, hi = flat.min(axis=1).astype(np.float64), flat.max(axis=1).astype(np.float64)
-        if not (np.all(np.isfinite(lo)) and np.all(np.isfinite(hi))):
-            raise ValueError("the fit produced non-finite coefficients")
-        self.lo = lo if self.lo is None else np.minimum(self.lo, lo)
-        self.hi = hi if self.hi is None else np.maximum(self.hi, hi)
-        self.file.write(km.data)
-        self.shapes.append(km.shape)
-
-    def bands(self) -> Any:
-        """Yield the bands back in order, ``(K, b, …)`` (the file is deleted after the last)."""
-        self.file.close()
-        with open(self.path, "rb") as f:
-            for shape in self.shapes:
-                yield np.fromfile(f, np.float32, math.prod(shape)).reshape(shape)
-        self.path.unlink()
-
-
 @dataclass
 class FitResult:
     """The fitted layers (file-backed planes in the scratch folder) and the quality report."""
@@ -232,7 +191,7 @@ def fit_stream(images: Images, lights: Lights, keys: Sequence[str], scratch: Pat
     train = np.setdiff1d(np.arange(n), held)
     loo = _Solver(lights[train], keys, terms, linear) if len(held) else None
     sse = {k: np.zeros(len(held)) for k in keys}
-    sinks = _Sinks(scratch, w, h)
+    sinks = Sinks(scratch, w, h)
     bar = progress("fitting " + ", ".join(keys), h) if progress else None
     spans = [(y0, min(h, y0 + rows)) for y0 in range(0, h, rows)]
     step = _Step(full, loo, held, train, layers)
@@ -276,114 +235,3 @@ def _prefetched(images: Images, spans: Sequence[tuple[int, int]]
             band = ahead.result()
             ahead = pool.submit(read, spans[i + 1]) if i + 1 < len(spans) else None
             yield band
-
-
-class _Sinks:
-    """Where each band's outputs go: plane files, or a spill for the globally quantised ones."""
-
-    def __init__(self, scratch: Path, width: int, height: int) -> None:
-        self.scratch, self.width, self.height = Path(scratch), width, height
-        self.writers: dict[str, StripTiffWriter] = {}
-        self.spills: dict[str, _Spill] = {}
-
-    def _write(self, name: str, rows: npt.NDArray[np.uint8]) -> None:
-        if name not in self.writers:
-            bands = 3 if rows.ndim == 3 else 1
-            self.writers[name] = StripTiffWriter(self.scratch / f"{name}.tif", self.width,
-                                                 self.height, bands)
-        self.writers[name].write(rows)
-
-    def _spill(self, name: str, values: npt.NDArray[np.float32]) -> None:
-        if name not in self.spills:
-            self.spills[name] = _Spill(self.scratch / f"{name}.f32")
-        self.spills[name].append(values)
-
-    def take(self, outs: dict[str, fb.Out], keys: Sequence[str]) -> None:
-        for k in ("ptm", "ptm-lrgb", "hsh"):
-            if k in keys:
-                self._spill(k, outs[k]["coeffs"].astype(np.float32))
-        if "ptm-lrgb" in keys:
-            self._write("ptm-lrgb-color", outs["ptm-lrgb"]["rgb"].astype(np.uint8))
-        if {"normals", "ward"} & set(keys):
-            self._write("normals", encode_normals(outs["normals"]["normals"].astype(np.float32)))
-        if "normals" in keys:
-            self._write("albedo", _to8(outs["normals"]["albedo"]))
-        if "ward" in keys:
-            for m in ("kd", "ks", "gloss"):
-                self._write(f"ward-{m}", outs["ward"][m].astype(np.uint8))
-
-    def finish(self, keys: Sequence[str], terms: int, space: str,
-               progress: Callable[[str, int], Progress] | None) -> dict[str, PlaneLayer]:
-        files = {name: wr.close() for name, wr in self.writers.items()}
-        layers: dict[str, PlaneLayer] = {}
-        for k in ("ptm", "ptm-lrgb", "hsh"):
-            if k in keys:
-                layers[k] = self._quantise(k, terms, files, progress)
-        if "normals" in keys:
-            layers["normals"] = _svbrdf([("normals", files["normals"]), ("kd", files["albedo"])],
-                                        space)
-        if "ward" in keys:
-            layers["ward"] = _svbrdf([("normals", files["normals"]), ("kd", files["ward-kd"]),
-                                      ("ks", files["ward-ks"]), ("gloss", files["ward-gloss"])],
-                                     space)
-        return layers
-
-    def _quantise(self, key: str, terms: int, files: dict[str, BandImage],
-                  progress: Callable[[str, int], Progress] | None) -> PlaneLayer:
-        """Second pass over a spill: the 8-bit planes of a PTM or HSH layer."""
-        spill = self.spills[key]
-        assert spill.lo is not None and spill.hi is not None
-        scale: Any
-        bias: Any
-        # group name -> the (term slice, channel) of the coefficient-major bands it stores
-        parts: dict[str, tuple[slice, int | None]]
-        if key == "hsh":
-            scale, bias = hsh_quantisation(spill.lo, spill.hi)
-            parts = {f"t{t}": (slice(t, t + 1), None) for t in range(terms)}
-        else:
-            scale, bias = ptm_quantisation(spill.lo, spill.hi)
-            thirds = [slice(3 * g, 3 * g + 3) for g in range(2)]
-            parts = ({f"c{g}": (k, None) for g, k in enumerate(thirds)} if key == "ptm-lrgb"
-                     else {f"{c}{g}": (k, ci) for ci, c in enumerate("rgb")
-                           for g, k in enumerate(thirds)})
-        quantize = hsh_quantize if key == "hsh" else ptm_quantize
-        writers = {g: StripTiffWriter(self.scratch / f"{key}-{g}.tif", self.width, self.height,
-                                      3) for g in parts}
-        bar = progress(f"quantising {key}", self.height) if progress else None
-        done = 0
-        for values in spill.bands():  # (K, b, W[, 3])
-            per_term = (-1,) + (1,) * (values.ndim - 1)
-            q = quantize(values, scale.reshape(per_term), bias.reshape(per_term))
-            for g, (k, channel) in parts.items():
-                part = q[k] if channel is None else q[k, :, :, channel]  # (terms, b, W[, 3])
-                # an HSH term holds its R, G, B; a PTM group three terms of one channel
-                writers[g].write(part[0] if key == "hsh" else np.moveaxis(part, 0, -1))
-            done += values.shape[1]
-            if bar:
-                bar.update(done)
-        planes = {g: wr.close() for g, wr in writers.items()}
-        if key == "hsh":
-            return hsh_plane_layer([float(s) for s in scale],
-                                   [-float(b) / float(s) for s, b in zip(scale, bias, strict=True)],
-                                   lambda t: planes[f"t{t}"])
-        colorspace = "lrgb" if key == "ptm-lrgb" else "rgb"
-        return ptm_plane_layer(
-            colorspace, scale, bias,
-            lambda c, k: planes[f"c{k.start // 3}" if c is None else f"{'rgb'[c]}{k.start // 3}"],
-            files.get("ptm-lrgb-color"))
-
-
-def _to8(values: npt.NDArray[np.generic]) -> npt.NDArray[np.uint8]:
-    out: npt.NDArray[np.uint8] = np.clip(np.round(np.asarray(values, np.float64) * 255.0), 0,
-                                         255).astype(np.uint8)
-    return out
-
-
-def _svbrdf(maps: list[tuple[str, BandImage]], space: str) -> PlaneLayer:
-    """A shape + material layer from fitted maps (as :func:`~.layers.add_svbrdf_layer`)."""
-    groups = []
-    for name, data in maps:
-        channels, scale, bias = SVBRDF_MAPS[name]
-        groups.append(PlaneGroup(channels, data, scale, bias))
-    return PlaneLayer("svbrdf", groups, group_names=[name for name, _ in maps],
-                      extra={"glossLimits": list(GLOSS_LIMITS), "inputColorSpace": space})

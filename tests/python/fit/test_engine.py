@@ -1,0 +1,198 @@
+"""Streaming fit: a tall collection read in row bands fits exactly like the in-memory stack."""
+
+from __future__ import annotations
+
+import json
+import tracemalloc
+from collections.abc import Callable
+from pathlib import Path
+
+import numpy as np
+import numpy.typing as npt
+import pytest
+import pyvips
+
+from lanterna.errors import LanternaInputError
+from lanterna.tiler.dataset import layers
+from lanterna.tiler.dataset.layers import add_hsh_layer, add_ptm_layer
+from lanterna.tiler.dataset.writer import DatasetWriter
+from lanterna.tiler.fit import run as fit_run
+from lanterna.tiler.fit.models import model_table
+from lanterna.tiler.fit.run import fit_collection
+from lanterna.tiler.formats.layouts import encode_normals
+from lanterna.tiler.inputs import stack as stack_module
+from lanterna.tiler.inputs.lp import read_lp
+from lanterna.tiler.inputs.stack import StackReader, load_stack
+from tests.python.fixtures.photos import BAND, tall_lights, write_tall_stack
+from tests.python.fixtures.photos import TALL_H as H
+from tests.python.fixtures.photos import TALL_N as N
+from tests.python.fixtures.photos import TALL_W as W
+
+
+@pytest.fixture(scope="module")
+def collection(tmp_path_factory: pytest.TempPathFactory
+               ) -> tuple[list[Path], npt.NDArray[np.float64]]:
+    lights = tall_lights()
+    return write_tall_stack(tmp_path_factory.mktemp("tall") / "shots", lights), lights
+
+
+def test_reader_bands_equal_load_stack(collection: tuple[list[Path], npt.NDArray[np.float64]]
+                                       ) -> None:
+    files, _ = collection
+    full = load_stack(files)
+    reader = StackReader(files)
+    assert reader.shape == full.shape
+    bands = [reader[:, y0:y0 + BAND] for y0 in range(0, H, BAND)]
+    assert all(b.dtype == np.float32 for b in bands)
+    assert np.array_equal(np.concatenate(bands, axis=1), full)
+    # a new pass (a read above the current row) reopens the files; subsets and single images
+    assert np.array_equal(reader[:, 5:9], full[:, 5:9])
+    assert np.array_equal(reader[np.array([3, 1])][:, 990:1000], full[[3, 1], 990:1000])
+    assert np.array_equal(reader[7], full[7])
+
+
+@pytest.mark.parametrize("key", ["ptm", "ptm-lrgb", "hsh", "normals", "ward"])
+def test_banded_fit_equals_in_memory_fit(
+        collection: tuple[list[Path], npt.NDArray[np.float64]], key: str) -> None:
+    files, lights = collection
+    in_memory = model_table(9)[key].fit(load_stack(files), lights)
+    streamed = model_table(9, band_rows=BAND)[key].fit(StackReader(files), lights)
+    if key in ("ptm", "ptm-lrgb"):
+        assert np.array_equal(streamed.coefficients, in_memory.coefficients)
+        assert np.array_equal(streamed.scale, in_memory.scale)
+        assert np.array_equal(streamed.bias, in_memory.bias)
+        if key == "ptm-lrgb":
+            assert np.array_equal(streamed.rgb, in_memory.rgb)
+    elif key == "hsh":
+        assert np.array_equal(streamed.coefficients, in_memory.coefficients)
+        assert np.array_equal(streamed.scale, in_memory.scale)
+        assert np.array_equal(streamed.bias, in_memory.bias)
+    elif key == "normals":
+        assert np.array_equal(encode_normals(streamed.normals),
+                              encode_normals(in_memory.normals))
+        np.testing.assert_allclose(streamed.albedo, in_memory.albedo, rtol=0, atol=1e-6)
+    else:
+        for field in ("normals", "kd", "ks", "gloss"):
+            assert np.array_equal(getattr(streamed, field), getattr(in_memory, field)), field
+
+
+def _peak(action: Callable[[], object]) -> int:
+    tracemalloc.start()
+    try:
+        action()
+        return tracemalloc.get_traced_memory()[1]
+    finally:
+        tracemalloc.stop()
+
+
+def test_banded_fit_memory_is_bounded(collection: tuple[list[Path], npt.NDArray[np.float64]]
+                                      ) -> None:
+    files, lights = collection
+    full_bytes = N * H * W * 3 * 4
+    band_bytes = N * BAND * W * 3 * 4
+    reader = StackReader(files)
+    read_peak = _peak(lambda: max(float(reader[:, y0:y0 + BAND].max())
+                                  for y0 in range(0, H, BAND)))
+    fit = model_table(9, band_rows=BAND)["ptm-lrgb"].fit
+    fit_peak = _peak(lambda: fit(StackReader(files), lights))
+    memory_peak = _peak(lambda: fit(load_stack(files), lights))
+    print(f"\nfull stack {full_bytes / 1e6:.2f} MB, one band {band_bytes / 1e6:.2f} MB; peaks: "
+          f"banded read pass {read_peak / 1e6:.2f} MB, banded ptm-lrgb fit "
+          f"{fit_peak / 1e6:.2f} MB, in-memory ptm-lrgb fit {memory_peak / 1e6:.2f} MB")
+    # a read pass holds one band at a time
+    assert read_peak < 2 * band_bytes
+    # the fit adds only O(H·W) outputs (float coefficients, quantisation temporaries)
+    assert fit_peak < 0.5 * full_bytes <= memory_peak
+
+
+def test_reader_checks_sizes_from_headers(tmp_path: Path) -> None:
+    files = write_tall_stack(tmp_path / "shots", tall_lights(3))
+    pyvips.Image.black(W, H + 1, bands=3).write_to_file(str(files[2]))
+    with pytest.raises(LanternaInputError, match=r"img_002\.png: is 40x1001, but img_000\.png"):
+        StackReader(files)
+
+
+def _plane(ds: Path, image: str) -> npt.NDArray[np.uint8]:
+    img = pyvips.Image.new_from_file(str(ds / "iiif" / image / "full" / "max" / "0" /
+                                         "default.png"))
+    return np.asarray(img.numpy(), np.uint8).reshape(img.height, img.width, img.bands)
+
+
+def test_lanterna_fit_planes_equal_the_in_memory_fits(
+        collection: tuple[list[Path], npt.NDArray[np.float64]], tmp_path: Path,
+        monkeypatch: pytest.MonkeyPatch) -> None:
+    """One streamed pass for five models (37-row bands): every stored plane, byte for byte."""
+    files, lights = collection
+    monkeypatch.setattr(layers, "PREVIEW_PIXELS", W * 29)  # previews in 29-row bands
+    lp = files[0].parent / "lights.lp"
+    lp.write_text(f"{len(files)}\n" + "".join(
+        f"{f.name} {x:.9f} {y:.9f} {z:.9f}\n" for f, (x, y, z) in zip(files, lights, strict=True)))
+    lights = read_lp(lp, files[0].parent)[1]  # as parsed, to the last bit
+    ds = tmp_path / "ds"
+    fit_collection(files[0].parent, lp, ["ptm", "ptm-lrgb", "hsh", "normals", "ward"], ds,
+                   band_rows=BAND)
+    stack = load_stack(files)
+    table = model_table(9)
+    ptm = table["ptm"].fit(stack, lights)
+    for c, name in enumerate("rgb"):
+        for g in range(2):
+            assert np.array_equal(_plane(ds, f"ptm_{name}{g}"),
+                                  ptm.coefficients[:, :, c, 3 * g:3 * g + 3]), (name, g)
+    lrgb = table["ptm-lrgb"].fit(stack, lights)
+    assert np.array_equal(_plane(ds, "ptm_lrgb_c0"), lrgb.coefficients[..., :3])
+    assert np.array_equal(_plane(ds, "ptm_lrgb_c1"), lrgb.coefficients[..., 3:])
+    assert np.array_equal(_plane(ds, "ptm_lrgb_color"), lrgb.rgb)
+    hsh = table["hsh"].fit(stack, lights)
+    for t in range(9):
+        assert np.array_equal(_plane(ds, f"hsh9_t{t}"), hsh.coefficients[..., t]), t
+    ward = table["ward"].fit(stack, lights)
+    assert np.array_equal(_plane(ds, "normals_normals"), encode_normals(ward.normals))
+    for m in ("kd", "ks"):
+        assert np.array_equal(_plane(ds, f"ward_{m}"), getattr(ward, m)), m
+    assert np.array_equal(_plane(ds, "ward_gloss")[..., 0], ward.gloss)
+    albedo = table["normals"].fit(stack, lights).albedo
+    assert np.array_equal(_plane(ds, "normals_kd"),
+                          np.clip(np.round(albedo.astype(np.float64) * 255), 0, 255))
+    desc = json.loads((ds / "lanterna.json").read_text())
+    services = {layer["id"]: layer["service"] for layer in desc["layers"]}
+    stored = services["ptm"]["planes"][0]
+    assert stored["scale"] == [float(v) for v in ptm.scale[:3]]
+    assert stored["bias"] == [float(v) / 255 for v in ptm.bias[:3]]
+    # the normal map is stored once and referenced by both shape layers
+    assert (services["normals"]["planes"][0]["service"]["id"]
+            == services["ward"]["planes"][0]["service"]["id"])
+    assert not list(tmp_path.glob(".lanterna-fit-*")), "scratch folder left behind"
+    # the band-wise preview of the file-backed planes equals the whole-image one
+    with DatasetWriter(tmp_path / "mem", name="mem", label="mem", width=W, height=H) as mem:
+        add_ptm_layer(mem, ptm, layer_id="ptm")
+        add_hsh_layer(mem, hsh, layer_id="hsh9")
+    for image in ("ptm_preview", "hsh9_preview"):
+        streamed = (ds / "iiif" / image / "full/max/0/default.jpg").read_bytes()
+        assert streamed == (tmp_path / "mem" / "iiif" / image / "full/max/0/default.jpg"
+                            ).read_bytes(), image
+
+
+def test_wide_collections_are_read_from_tiled_copies_with_the_same_result(
+        collection: tuple[list[Path], npt.NDArray[np.float64]], tmp_path: Path,
+        monkeypatch: pytest.MonkeyPatch) -> None:
+    """Past the decoder budget the images are re-encoded as tiled TIFFs and read file by file
+    per band (nothing kept between bands): the planes are unchanged."""
+    files, lights = collection
+    lp = files[0].parent / "lights.lp"
+    lp.write_text(f"{len(files)}\n" + "".join(
+        f"{f.name} {x:.9f} {y:.9f} {z:.9f}\n" for f, (x, y, z) in zip(files, lights, strict=True)))
+    reader = StackReader(files)
+    assert reader.decoder_bytes() == N * W * stack_module.DECODER_BYTES_PER_COLUMN
+    fit_collection(files[0].parent, lp, ["ptm", "normals"], tmp_path / "direct", band_rows=BAND)
+    made: list[Path] = []
+    real = stack_module.to_tiled_tiff
+    monkeypatch.setattr(fit_run, "DECODER_BUDGET", reader.decoder_bytes() - 1)
+    monkeypatch.setattr(fit_run, "to_tiled_tiff", lambda p, o: made.append(o) or real(p, o))
+    fit_collection(files[0].parent, lp, ["ptm", "normals"], tmp_path / "tiled", band_rows=BAND)
+    assert len(made) == N and all(not p.exists() for p in made)  # in the removed scratch
+    for image in ("ptm_r0", "ptm_g1", "ptm_b0", "normals_normals", "normals_kd"):
+        assert np.array_equal(_plane(tmp_path / "direct", image), _plane(tmp_path / "tiled", image))
+    tiled = StackReader([stack_module.to_tiled_tiff(f, tmp_path / f"{i}.tif")
+                         for i, f in enumerate(files[:3])], reopen=True)
+    assert tiled.decoder_bytes() == 0
+    assert np.array_equal(tiled[:, 500:537], load_stack(files[:3])[:, 500:537])
