@@ -23,8 +23,6 @@ F32 = npt.NDArray[np.float32]
 
 #: Fraction of the albedo seen without direct light (keeps shadows from going black).
 AMBIENT = 0.06
-#: Lowest light elevation used by :func:`demo_lights` (lz ≥ 0.2).
-MIN_LIGHT_Z = 0.2
 #: Inscription on the tablet, one string per line.
 INSCRIPTION = ("LANTERNA", "LVX IN TENEBRIS LVCET")
 

@@ -21,7 +21,6 @@ import pyvips
 
 #: TIFF field types used here.
 _SHORT, _LONG, _LONG8 = 3, 4, 16
-_TYPE_SIZE = {_SHORT: 2, _LONG: 4, _LONG8: 8}
 _TYPE_CODE = {_SHORT: "H", _LONG: "I", _LONG8: "Q"}
 #: Tile side: libvips reads a tiled TIFF tile by tile, for any region (a striped one it may
 #: decode whole for random access).
