@@ -13,18 +13,14 @@ from lanterna.cli import main
 from lanterna.tiler.fit import bands as fit_bands
 from lanterna.tiler.fit.models import leave_one_out, model_table, psnr
 from lanterna.tiler.fit.ward import GLOSS_LIMITS, alpha_grid, fit_ward, predict_ward, quantize_ward
-from tests.python.fixtures.photos import write_collection
+from tests.python.fixtures.photos import spiral_lights, write_collection
 
 H, W, N = 24, 32, 60
 
 
 def _lights(n: int = N) -> npt.NDArray[np.float64]:
-    """Return ``n`` unit lights on a spiral over the hemisphere, elevation 15°–85°."""
-    k = np.arange(n)
-    elev = np.radians(15 + 70 * k / (n - 1))
-    azim = k * np.pi * (3 - np.sqrt(5))
-    return np.stack([np.cos(elev) * np.cos(azim), np.cos(elev) * np.sin(azim),
-                     np.sin(elev)], axis=1)
+    """``n`` spiral lights, elevation 15°–85°."""
+    return spiral_lights(n, (15.0, 85.0))
 
 
 def _object() -> dict[str, npt.NDArray[np.float64]]:
