@@ -20,9 +20,10 @@ export {
   type RelightLayer, type PlaneGroup, type LayerType, type PtmColorspace, type InputColorSpace,
 } from './iiif/relight-service';
 export { imageGeometry, commonGeometry, type ImageGeometry } from './iiif/image-info';
+export { LanternaError } from './errors';
 export {
-  LanternaError, ManifestError, MissingRelightServiceError, RelightServiceError, ImageInfoError,
-  MismatchedPlanesError, FetchError, OverlayError,
+  ManifestError, MissingRelightServiceError, RelightServiceError, ImageInfoError, MismatchedPlanesError, FetchError,
+  OverlayError,
 } from './iiif/errors';
 export { ShaderError } from './layers/programs';
 export { ptmWeights, relightPtmPixel, BASES, PTM_BASIS_TERMS, type LightBasis } from './math/ptm-basis';

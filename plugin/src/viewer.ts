@@ -7,7 +7,7 @@
  * and the overlays; this module wires them to the light, the render mode and the parameters.
  */
 import type OpenSeadragon from 'openseadragon';
-import { LanternaError } from './iiif/errors';
+import { LanternaError } from './errors';
 import { fetchJson, type InfoCache } from './iiif/load';
 import { parseManifest, type ManifestInfo } from './iiif/manifest';
 import { initialLens } from './lens/lens-state';

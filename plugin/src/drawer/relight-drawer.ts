@@ -6,7 +6,7 @@
  * base layers, the lens layer or overlays, and where) to the {@link FrameRenderer}, which draws it.
  */
 import OpenSeadragon from 'openseadragon';
-import { LanternaError } from '../iiif/errors';
+import { LanternaError } from '../errors';
 import type { RelightLayer } from '../iiif/relight-service';
 import type { Compositor, DrawerLens } from '../compositor';
 import type { AnnotationDisplay } from '../lens/lens-state';

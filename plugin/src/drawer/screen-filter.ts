@@ -5,7 +5,7 @@
 import * as twgl from 'twgl.js';
 import { BOX_FRAGMENT_SHADER, FULLSCREEN_VERTEX_SHADER } from '../gl/glsl/box.glsl';
 import { U_RADIUS, U_SOURCE, U_STEP } from '../gl/uniforms';
-import { LanternaError } from '../iiif/errors';
+import { LanternaError } from '../errors';
 import { compileProgram } from '../layers/programs';
 import { boxPasses, type BoxFilter } from '../render/filter-plan';
 

@@ -7,7 +7,7 @@ import { COLOR_GLSL } from '../gl/glsl/color.glsl';
 import { MODE_DEFINES, MODES_MAIN_GLSL, STAGE, type Stage } from '../gl/glsl/modes.glsl';
 import { planesPrelude } from '../gl/glsl/planes.glsl';
 import { QUAD_VERTEX_SHADER } from '../gl/glsl/quad.vert';
-import { LanternaError } from '../iiif/errors';
+import { LanternaError } from '../errors';
 import { svbrdfMapIndices, type RelightLayer } from '../iiif/relight-service';
 import { RENDER_MODES, type RenderMode } from '../render/modes';
 import { HSH_FRAGMENT_BODY } from './hsh/hsh.frag';

@@ -2,7 +2,7 @@
  * The viewer page's control panel: layer switcher, mode menu (the active layer's modes only) and
  * sliders for the parameters the mode uses. Plain DOM, driven by the viewer's public API.
  */
-import { LanternaError } from '../iiif/errors';
+import { LanternaError } from '../errors';
 import { MODE_LABELS, shadingClass, type RenderMode } from '../render/modes';
 import { PARAM_SPECS, relevantParams, type RenderParamName } from '../render/params';
 import type { LanternaViewer } from '../viewer';

@@ -4,7 +4,7 @@
  */
 import type OpenSeadragon from 'openseadragon';
 import type { PixelData } from '../drawer/relight-drawer';
-import { LanternaError } from '../iiif/errors';
+import { LanternaError } from '../errors';
 import type { LoadedLayer } from '../iiif/load';
 import type { ManifestInfo } from '../iiif/manifest';
 import type { LayerType } from '../iiif/relight-service';
