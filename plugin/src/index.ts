@@ -25,7 +25,7 @@ export {
   ManifestError, MissingRelightServiceError, RelightServiceError, ImageInfoError, MismatchedPlanesError, FetchError,
   OverlayError,
 } from './iiif/errors';
-export { ShaderError } from './layers/programs';
+export { ShaderError } from './gl/compile';
 export { ptmWeights, relightPtmPixel, BASES, PTM_BASIS_TERMS, type LightBasis } from './math/ptm-basis';
 export { hshWeights } from './math/hsh-basis';
 export {

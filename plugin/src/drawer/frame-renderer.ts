@@ -4,7 +4,7 @@
  * (premultiplied source-over, everywhere or only inside or outside the lens). Owns the GL passes
  * of one context; knows nothing of OpenSeadragon (the drawer describes the frame).
  */
-import type { DrawerLens } from '../compositor';
+import type { DrawerLens } from './compositor';
 import type { RelightLayer } from '../iiif/relight-service';
 import type { AnnotationDisplay } from '../lens/lens-state';
 import type { Light } from '../math/light';

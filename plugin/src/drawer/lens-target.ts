@@ -7,7 +7,7 @@ import { FULLSCREEN_VERTEX_SHADER } from '../gl/glsl/box.glsl';
 import { LENS_FRAGMENT_SHADER } from '../gl/glsl/composite.glsl';
 import { U_LENS_CIRCLE, U_OPACITY, U_SOURCE } from '../gl/uniforms';
 import { LanternaError } from '../errors';
-import { compileProgram } from '../layers/programs';
+import { compileProgram } from '../gl/compile';
 
 /** A circle in device pixels, y up (`gl_FragCoord`). */
 export interface DeviceCircle {

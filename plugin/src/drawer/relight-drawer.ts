@@ -8,7 +8,7 @@
 import OpenSeadragon from 'openseadragon';
 import { LanternaError } from '../errors';
 import type { RelightLayer } from '../iiif/relight-service';
-import type { Compositor, DrawerLens } from '../compositor';
+import type { Compositor, DrawerLens } from './compositor';
 import type { AnnotationDisplay } from '../lens/lens-state';
 import { lensInDevicePixels } from '../math/lens';
 import { lightFromProjection, OVERHEAD_LIGHT, type Light } from '../math/light';

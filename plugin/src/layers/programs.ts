@@ -7,7 +7,7 @@ import { COLOR_GLSL } from '../gl/glsl/color.glsl';
 import { MODE_DEFINES, MODES_MAIN_GLSL, STAGE, type Stage } from '../gl/glsl/modes.glsl';
 import { planesPrelude } from '../gl/glsl/planes.glsl';
 import { QUAD_VERTEX_SHADER } from '../gl/glsl/quad.vert';
-import { LanternaError } from '../errors';
+import { compileProgram } from '../gl/compile';
 import { svbrdfMapIndices, type RelightLayer } from '../iiif/relight-service';
 import { RENDER_MODES, type RenderMode } from '../render/modes';
 import { HSH_FRAGMENT_BODY } from './hsh/hsh.frag';
@@ -62,9 +62,6 @@ export function programSpec(layer: RelightLayer): ProgramSpec {
   return { kind, defines, key };
 }
 
-/** A shader failed to compile or link. */
-export class ShaderError extends LanternaError {}
-
 /** The program kind that draws a layer. */
 export function programKind(layer: RelightLayer): ProgramKind {
   switch (layer.layerType) {
@@ -99,23 +96,6 @@ export function fragmentShaderSource(spec: ProgramKind | ProgramSpec, mode: Rend
     GAMMA_ONE: gammaOne ? 1 : 0,
   };
   return planesPrelude(`lanterna-${kind}-${mode}-${stage}`, all) + COLOR_GLSL + body + MODES_MAIN_GLSL;
-}
-
-/**
- * Compile a program from a vertex and a fragment shader.
- *
- * @throws {@link ShaderError} if it fails
- */
-export function compileProgram(gl: WebGL2RenderingContext, vertex: string, fragment: string, name: string):
-  twgl.ProgramInfo {
-  const errors: string[] = [];
-  const info = twgl.createProgramInfo(gl, [vertex, fragment], {
-    errorCallback: (msg: string) => { errors.push(msg); },
-  }) as twgl.ProgramInfo | null;
-  if (!info) {
-    throw new ShaderError(`program ${name} failed: ${errors.join('\n')}`);
-  }
-  return info;
 }
 
 /** Layer programs of one GL context, compiled on first use. */

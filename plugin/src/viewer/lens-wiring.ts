@@ -3,7 +3,7 @@
  * it, the lens items (see {@link LensController}) and what the drawer is told about it.
  */
 import type OpenSeadragon from 'openseadragon';
-import type { Compositor } from '../compositor';
+import type { Compositor } from '../drawer/compositor';
 import type { RelightLayer } from '../iiif/relight-service';
 import { LensController } from '../lens/lens-controller';
 import { updateLens, type LensState, type LensUpdate } from '../lens/lens-state';
