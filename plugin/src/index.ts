@@ -31,9 +31,8 @@ export { hshWeights } from './math/hsh-basis';
 export {
   lightFromPointer, lightFromProjection, nudgeLight, OVERHEAD_LIGHT, type Light, type NudgeDirection,
 } from './math/light';
-export {
-  RENDER_MODES, MODE_LABELS, applicableModes, shadingClass, isRenderMode, type RenderMode, type ShadingClass,
-} from './render/modes';
+export { RENDER_MODES, MODE_LABELS, isRenderMode, type RenderMode, type ShadingClass } from './render/modes';
+export { applicableModes, shadingClass } from './layers/layer-kinds';
 export {
   DEFAULT_RENDER_PARAMS, PARAM_SPECS, mergeParams, relevantParams, type RenderParams, type RenderParamName,
 } from './render/params';

@@ -13,7 +13,7 @@ import { parseManifest, type ManifestInfo } from './iiif/manifest';
 import { initialLens } from './lens/lens-state';
 import { lightFromPointer, lightFromProjection } from './math/light';
 import { overlayState } from './overlay/overlay-controller';
-import { applicableModes, DEFAULT_RENDER_MODE, isRenderMode, shadingClass, type RenderMode } from './render/modes';
+import { DEFAULT_RENDER_MODE, isRenderMode, type RenderMode } from './render/modes';
 import { DEFAULT_RENDER_PARAMS, mergeParams, type RenderParams } from './render/params';
 import { attachInteraction, type DragMode } from './ui/interaction';
 import { createLightWidget, type LightWidget } from './ui/light-widget';
@@ -77,7 +77,7 @@ export function createViewer(options: CreateViewerOptions): LanternaViewer {
   });
 
   const applyLight = (): void => {
-    drawer().setLight(light.lu, light.lv);
+    drawer().setLight(light);
     widget?.update(light);
     changed();
   };
@@ -141,15 +141,15 @@ export function createViewer(options: CreateViewerOptions): LanternaViewer {
     slots.hideOthers(slot);
     item.setOpacity(1);
     active = slot;
-    if (!applicableModes(slot.info.layer).includes(renderMode)) {
+    if (!slot.kind.modes.includes(renderMode)) {
       renderMode = DEFAULT_RENDER_MODE;
       drawer().setRenderMode(renderMode);
     }
     drawer().prepare(slot.info.layer, renderMode);
-    widget?.setLit(shadingClass(slot.info.layer) !== 'flat');
+    widget?.setLit(slot.kind.lit);
     overlays.invalidate();
     sync();
-    await lens.followActive(slot.info.layer);
+    await lens.followActive(slot);
     changed();
   };
 
@@ -194,7 +194,7 @@ export function createViewer(options: CreateViewerOptions): LanternaViewer {
       if (!active) {
         throw new RenderModeError('no layer is open yet (await ready)');
       }
-      const modes = applicableModes(active.info.layer);
+      const modes = active.kind.modes;
       if (!modes.includes(mode)) {
         throw new RenderModeError(`mode ${mode} does not apply to layer ${active.info.id} `
           + `(${active.info.layer.layerType}); it supports ${modes.join(', ')}`);

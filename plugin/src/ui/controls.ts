@@ -3,7 +3,7 @@
  * sliders for the parameters the mode uses. Plain DOM, driven by the viewer's public API.
  */
 import { LanternaError } from '../errors';
-import { MODE_LABELS, shadingClass, type RenderMode } from '../render/modes';
+import { MODE_LABELS, type RenderMode } from '../render/modes';
 import { PARAM_SPECS, relevantParams, type RenderParamName } from '../render/params';
 import type { LanternaViewer } from '../viewer';
 import { labelled } from './dom';
@@ -69,13 +69,12 @@ export function createControls(lanterna: LanternaViewer, parent: HTMLElement,
   const refresh = (): void => {
     const activeId = lanterna.getActiveLayer();
     const active = layers.find((l) => l.id === activeId);
-    const info = lanterna.manifest?.layers.find((l) => l.id === activeId);
-    if (!active || !info) {
+    if (!active) {
       return;
     }
     layerSelect.value = activeId;
     const mode = lanterna.getRenderMode();
-    const names = relevantParams(mode, shadingClass(info.layer));
+    const names = relevantParams(mode, active.shading);
     const key = `${activeId}|${mode}`;
     if (key !== shownKey) {
       shownKey = key;

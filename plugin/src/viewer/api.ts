@@ -11,7 +11,7 @@ import type { LayerType } from '../iiif/relight-service';
 import type { LensState, LensUpdate } from '../lens/lens-state';
 import type { Light } from '../math/light';
 import type { OverlayState } from '../overlay/overlay-controller';
-import type { RenderMode } from '../render/modes';
+import type { RenderMode, ShadingClass } from '../render/modes';
 import type { RenderParams } from '../render/params';
 import type { DragMode } from '../ui/interaction';
 
@@ -44,6 +44,8 @@ export interface LayerInfo {
   readonly id: string;
   readonly label: string;
   readonly layerType: LayerType;
+  /** Its column in the contract's mode table (`docs/rendering.md`); `flat`: the light changes nothing. */
+  readonly shading: ShadingClass;
   /** The render modes that apply to it, in menu order. */
   readonly modes: RenderMode[];
 }
