@@ -11,7 +11,7 @@ import { LanternaError } from './errors';
 import { fetchJson, type InfoCache } from './iiif/load';
 import { parseManifest, type ManifestInfo } from './iiif/manifest';
 import { initialLens } from './lens/lens-state';
-import { lightFromPointer, lightFromProjection } from './math/light';
+import { lightFromProjection, type Light } from './math/light';
 import { overlayState } from './overlay/overlay-controller';
 import { DEFAULT_RENDER_MODE, isRenderMode, type RenderMode } from './render/modes';
 import { DEFAULT_RENDER_PARAMS, mergeParams, type RenderParams } from './render/params';
@@ -45,6 +45,8 @@ export function createViewer(options: CreateViewerOptions): LanternaViewer {
     throw new LanternaError(`viewer element #${options.element as string} not found`);
   }
   let dragMode: DragMode = options.mode ?? 'light';
+  // Raw (lu, lv) numbers become a Light (clamped) here and in setLight only; the widget and the
+  // pointer hand over Lights already made by lightFromPointer or nudgeLight.
   let light = lightFromProjection(options.light?.[0] ?? 0, options.light?.[1] ?? 0);
   let renderMode: RenderMode = DEFAULT_RENDER_MODE;
   let params: RenderParams = DEFAULT_RENDER_PARAMS;
@@ -73,10 +75,11 @@ export function createViewer(options: CreateViewerOptions): LanternaViewer {
 
   const widget: LightWidget | null = options.lightIndicator === false ? null : createLightWidget(viewer.element, {
     getLight: () => light,
-    setLight: (l) => { api.setLight(l.lu, l.lv); },
+    setLight: (l) => { applyLight(l); },
   });
 
-  const applyLight = (): void => {
+  const applyLight = (next: Light): void => {
+    light = next;
     drawer().setLight(light);
     widget?.update(light);
     changed();
@@ -102,10 +105,7 @@ export function createViewer(options: CreateViewerOptions): LanternaViewer {
 
   const detach = attachInteraction(viewer, {
     getMode: () => dragMode,
-    moveLight: (x, y, w, h) => {
-      light = lightFromPointer(x, y, w, h);
-      applyLight();
-    },
+    setLight: (l) => { applyLight(l); },
     claimed: () => lens.claimed(),
   });
 
@@ -158,7 +158,7 @@ export function createViewer(options: CreateViewerOptions): LanternaViewer {
     manifest = parsed;
     slots.add(parsed.layers);
     await activate(slots.require(options.layer ?? parsed.layers[0]?.id ?? ''));
-    applyLight();
+    applyLight(light);
   })();
   // Avoid an unhandled rejection if the caller never awaits `ready`.
   ready.catch(() => undefined);
@@ -176,8 +176,7 @@ export function createViewer(options: CreateViewerOptions): LanternaViewer {
     get manifest() { return manifest; },
     get layer() { return active?.loaded ?? null; },
     setLight(lu: number, lv: number) {
-      light = lightFromProjection(lu, lv);
-      applyLight();
+      applyLight(lightFromProjection(lu, lv));
     },
     getLight: () => light,
     setMode(m: DragMode) { dragMode = m; },
