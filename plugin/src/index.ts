@@ -3,9 +3,10 @@
  *
  * @packageDocumentation
  */
+export { createViewer } from './viewer/viewer';
 export {
-  createViewer, RenderModeError, UnknownLayerError, type CreateViewerOptions, type LanternaViewer, type LayerInfo,
-} from './viewer';
+  RenderModeError, UnknownLayerError, type CreateViewerOptions, type LanternaViewer, type LayerInfo,
+} from './api/viewer-api';
 export { RelightDrawer, RELIGHT_DRAWER_TYPE, WebGLUnavailableError, type PixelData } from './drawer/relight-drawer';
 export { FloatTargetsUnavailableError } from './drawer/screen-filter';
 export { BundleTileSource, type BundleTileSourceOptions } from './tiles/bundle-tile-source';
@@ -36,9 +37,9 @@ export { applicableModes, shadingClass } from './layers/layer-kinds';
 export {
   DEFAULT_RENDER_PARAMS, PARAM_SPECS, mergeParams, relevantParams, type RenderParams, type RenderParamName,
 } from './render/params';
-export { createControls, type Controls } from './ui/controls';
-export { createLensControls, type LensControls } from './ui/lens-controls';
-export { createHypertext, NO_ANNOTATION_TEXT, type HypertextWidget } from './ui/hypertext';
+export { createControls, type Controls } from './panel/controls';
+export { createLensControls, type LensControls } from './panel/lens-controls';
+export { createHypertext, NO_ANNOTATION_TEXT, type HypertextWidget } from './panel/hypertext';
 export { sanitizeHtml } from './ui/sanitize-html';
 export type { DragMode } from './ui/interaction';
 export { routeGesture, routeWheel, isLensAction, type GestureAction, type GestureStart } from './ui/gesture-routing';

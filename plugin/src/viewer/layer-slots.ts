@@ -9,7 +9,7 @@ import type { RelightLayer } from '../iiif/relight-service';
 import { layerKindOf, type LayerKind } from '../layers/layer-kinds';
 import { currentLevel, imagePxPerDevicePx, maxLevelOf } from '../math/levels';
 import { addBundleItem } from '../tiles/add-item';
-import { UnknownLayerError, type LayerInfo } from './api';
+import { UnknownLayerError, type LayerInfo } from '../api/viewer-api';
 
 /** One manifest layer and what has been opened of it. */
 export interface LayerSlot {

@@ -13,7 +13,7 @@ import type { RenderParams } from '../render/params';
 import type { DragMode } from '../ui/interaction';
 import { attachLensGestures, type LensGestures } from '../ui/lens-gestures';
 import { createLensRing, type LensRing } from '../ui/lens-ring';
-import { RenderModeError, UnknownLayerError } from './api';
+import { RenderModeError, UnknownLayerError } from '../api/viewer-api';
 import type { LayerSlot, LayerSlots } from './layer-slots';
 
 /** Options of {@link LensWiring}. */

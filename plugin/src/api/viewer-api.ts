@@ -1,16 +1,17 @@
 /**
- * The public shape of a Lanterna viewer: the options of `createViewer`, the running viewer's API
- * and its errors.
+ * The public shape of a Lanterna viewer: the options of `createViewer` (`viewer/viewer.ts`), the
+ * running viewer's API and its errors. Types and error classes only, so that the panel can be typed
+ * against the viewer without importing it.
  */
 import type OpenSeadragon from 'openseadragon';
-import type { PixelData } from '../drawer/relight-drawer';
+import type { PixelData } from '../drawer/read-pixels';
 import { LanternaError } from '../errors';
 import type { LoadedLayer } from '../iiif/load';
 import type { ManifestInfo } from '../iiif/manifest';
 import type { LayerType } from '../iiif/relight-service';
 import type { LensState, LensUpdate } from '../lens/lens-state';
 import type { Light } from '../math/light';
-import type { OverlayState } from '../overlay/overlay-controller';
+import type { OverlayState } from '../overlay/overlay-state';
 import type { RenderMode, ShadingClass } from '../render/modes';
 import type { RenderParams } from '../render/params';
 import type { DragMode } from '../ui/interaction';

@@ -3,30 +3,27 @@
  * one TiledImage per layer (inactive layers at opacity 0, so they load nothing), the active layer's
  * annotation overlay for the current level, and the lens.
  *
- * The parts live in `viewer/`: the API types, the OpenSeadragon options, the layer slots, the lens
- * and the overlays; this module wires them to the light, the render mode and the parameters.
+ * The parts live next to it in `viewer/` (the OpenSeadragon options, the layer slots, the lens and the
+ * overlays; the API types are in `api/`); this module wires them to the light, the render mode and
+ * the parameters.
  */
 import type OpenSeadragon from 'openseadragon';
-import { LanternaError } from './errors';
-import { fetchJson, type InfoCache } from './iiif/load';
-import { parseManifest, type ManifestInfo } from './iiif/manifest';
-import { initialLens } from './lens/lens-state';
-import { lightFromProjection, type Light } from './math/light';
-import { overlayState } from './overlay/overlay-controller';
-import { DEFAULT_RENDER_MODE, isRenderMode, type RenderMode } from './render/modes';
-import { DEFAULT_RENDER_PARAMS, mergeParams, type RenderParams } from './render/params';
-import { attachInteraction, type DragMode } from './ui/interaction';
-import { createLightWidget, type LightWidget } from './ui/light-widget';
-import { RenderModeError, type CreateViewerOptions, type LanternaViewer } from './viewer/api';
-import { whenFullyLoaded } from './viewer/fully-loaded';
-import { LayerSlots, levelOf, type LayerSlot } from './viewer/layer-slots';
-import { LensWiring } from './viewer/lens-wiring';
-import { createOsdViewer, relightDrawerOf } from './viewer/osd-viewer';
-import { OverlayWiring } from './viewer/overlay-wiring';
-
-export {
-  RenderModeError, UnknownLayerError, type CreateViewerOptions, type LanternaViewer, type LayerInfo,
-} from './viewer/api';
+import { RenderModeError, type CreateViewerOptions, type LanternaViewer } from '../api/viewer-api';
+import { LanternaError } from '../errors';
+import { fetchJson, type InfoCache } from '../iiif/load';
+import { parseManifest, type ManifestInfo } from '../iiif/manifest';
+import { initialLens } from '../lens/lens-state';
+import { lightFromProjection, type Light } from '../math/light';
+import { overlayState } from '../overlay/overlay-controller';
+import { DEFAULT_RENDER_MODE, isRenderMode, type RenderMode } from '../render/modes';
+import { DEFAULT_RENDER_PARAMS, mergeParams, type RenderParams } from '../render/params';
+import { attachInteraction, type DragMode } from '../ui/interaction';
+import { createLightWidget, type LightWidget } from '../ui/light-widget';
+import { whenFullyLoaded } from './fully-loaded';
+import { LayerSlots, levelOf, type LayerSlot } from './layer-slots';
+import { LensWiring } from './lens-wiring';
+import { createOsdViewer, relightDrawerOf } from './osd-viewer';
+import { OverlayWiring } from './overlay-wiring';
 
 /**
  * Create a viewer for a Lanterna manifest.
