@@ -1,10 +1,10 @@
 import { describe, expect, it } from 'vitest';
-import { parseRelightService, type RelightLayer } from '../../plugin/src/iiif/relight-service';
-import { applicableModes, shadingClass } from '../../plugin/src/layers/layer-kinds';
-import { isRenderMode, isUnsharpMode, MODE_LABELS, RENDER_MODES } from '../../plugin/src/render/modes';
-import { DEFAULT_RENDER_PARAMS, mergeParams, PARAM_SPECS, relevantParams } from '../../plugin/src/render/params';
-import { boxPasses, boxPassReference, F3, F5, modeFilter } from '../../plugin/src/render/filter-plan';
-import { relightBlock } from './fixtures';
+import { parseRelightService, type RelightLayer } from '../../../plugin/src/iiif/relight-service';
+import { applicableModes, shadingClass } from '../../../plugin/src/layers/layer-kinds';
+import { isRenderMode, isUnsharpMode, MODE_LABELS, RENDER_MODES } from '../../../plugin/src/render/modes';
+import { DEFAULT_RENDER_PARAMS, mergeParams, PARAM_SPECS, relevantParams } from '../../../plugin/src/render/params';
+import { boxPasses, boxPassReference, F3, F5, modeFilter } from '../../../plugin/src/render/filter-plan';
+import { relightBlock } from '../fixtures';
 
 function layer(layerType: string, extra: Record<string, unknown>, groups: string[][]): RelightLayer {
   return parseRelightService({

@@ -1,13 +1,13 @@
 import { describe, expect, it } from 'vitest';
 import {
   MAX_PLANES, U_BIAS, U_GLOSS_LIMITS, U_HALF, U_HSH_NORMAL_WEIGHTS, U_LIGHT, U_PARAM, U_SCALE, U_WEIGHTS,
-} from '../../plugin/src/gl/uniforms';
-import { DEFAULT_RENDER_PARAMS, type RenderParams } from '../../plugin/src/render/params';
-import { parseRelightService, type RelightLayer } from '../../plugin/src/iiif/relight-service';
-import { layerUniforms } from '../../plugin/src/layers/layer-uniforms';
-import { resolveLayer } from '../../plugin/src/layers/resolved-layer';
-import { lightFromProjection } from '../../plugin/src/math/light';
-import { relightBlock } from './fixtures';
+} from '../../../plugin/src/gl/uniforms';
+import { DEFAULT_RENDER_PARAMS, type RenderParams } from '../../../plugin/src/render/params';
+import { parseRelightService, type RelightLayer } from '../../../plugin/src/iiif/relight-service';
+import { layerUniforms } from '../../../plugin/src/layers/layer-uniforms';
+import { resolveLayer } from '../../../plugin/src/layers/resolved-layer';
+import { lightFromProjection } from '../../../plugin/src/math/light';
+import { relightBlock } from '../fixtures';
 
 /** The uniforms of `layer` under the light (lu, lv), resolved and clamped as the drawer does. */
 function uniformsOf(layer: RelightLayer, lu: number, lv: number, params?: RenderParams) {
