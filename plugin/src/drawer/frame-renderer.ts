@@ -4,13 +4,13 @@
  * (premultiplied source-over, everywhere or only inside or outside the lens). Owns the GL passes
  * of one context; knows nothing of OpenSeadragon (the drawer describes the frame).
  */
-import type { DrawerLens } from './compositor';
 import type { ResolvedLayer } from '../layers/resolved-layer';
 import type { AnnotationDisplay } from '../lens/lens-state';
 import type { Light } from '../math/light';
 import type { Mat3 } from '../math/matrix';
 import type { RenderMode } from '../render/modes';
 import type { RenderParams } from '../render/params';
+import type { DrawerLens } from './compositor';
 import { LayerPass, type ScissorBox, type TileQuad } from './layer-pass';
 import { LensTarget, type DeviceCircle } from './lens-target';
 import { OverlayPass } from './overlay-pass';

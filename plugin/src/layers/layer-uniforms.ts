@@ -2,10 +2,10 @@
  * Uniform values of a relight layer (pure: no GL): those fixed while the layer is drawn, computed
  * once when it is set, and those that follow the light and the parameters, computed per frame.
  */
+import { MAX_PLANES, MAX_TERMS, U_BIAS, U_HALF, U_LIGHT, U_PARAM, U_SCALE, U_WEIGHTS } from '../gl/uniforms';
 import type { RelightLayer } from '../iiif/relight-service';
 import type { Light } from '../math/light';
 import { DEFAULT_RENDER_PARAMS, PARAM_NAMES, type RenderParams } from '../render/params';
-import { MAX_PLANES, MAX_TERMS, U_BIAS, U_HALF, U_LIGHT, U_PARAM, U_SCALE, U_WEIGHTS } from '../gl/uniforms';
 import type { LayerKind } from './layer-kinds';
 
 /** Uniforms fixed for a layer: its plane groups' scale and bias, and its kind's own uniforms. */

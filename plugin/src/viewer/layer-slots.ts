@@ -3,13 +3,13 @@
  * TiledImage is added (at opacity 0, so it loads nothing) on first use.
  */
 import OpenSeadragon from 'openseadragon';
+import { UnknownLayerError, type LayerInfo } from '../api/viewer-api';
 import { loadLayer, type InfoCache, type LoadedLayer } from '../iiif/load';
 import type { ManifestLayer } from '../iiif/manifest';
 import type { RelightLayer } from '../iiif/relight-service';
 import { layerKindOf, type LayerKind } from '../layers/layer-kinds';
 import { currentLevel, imagePxPerDevicePx, maxLevelOf } from '../math/levels';
 import { addBundleItem } from '../tiles/add-item';
-import { UnknownLayerError, type LayerInfo } from '../api/viewer-api';
 
 /** One manifest layer and what has been opened of it. */
 export interface LayerSlot {

@@ -3,6 +3,7 @@
  * it, the lens items (see {@link LensController}) and what the drawer is told about it.
  */
 import type OpenSeadragon from 'openseadragon';
+import { RenderModeError, UnknownLayerError } from '../api/viewer-api';
 import type { Compositor } from '../drawer/compositor';
 import type { RelightLayer } from '../iiif/relight-service';
 import { LensController } from '../lens/lens-controller';
@@ -13,7 +14,6 @@ import type { RenderParams } from '../render/params';
 import type { DragMode } from '../ui/interaction';
 import { attachLensGestures, type LensGestures } from '../ui/lens-gestures';
 import { createLensRing, type LensRing } from '../ui/lens-ring';
-import { RenderModeError, UnknownLayerError } from '../api/viewer-api';
 import type { LayerSlot, LayerSlots } from './layer-slots';
 
 /** Options of {@link LensWiring}. */
