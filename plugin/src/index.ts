@@ -3,9 +3,10 @@
  *
  * @packageDocumentation
  */
+export { createViewer } from './viewer/viewer';
 export {
-  createViewer, RenderModeError, UnknownLayerError, type CreateViewerOptions, type LanternaViewer, type LayerInfo,
-} from './viewer';
+  RenderModeError, UnknownLayerError, type CreateViewerOptions, type LanternaViewer, type LayerInfo,
+} from './api/viewer-api';
 export { RelightDrawer, RELIGHT_DRAWER_TYPE, WebGLUnavailableError, type PixelData } from './drawer/relight-drawer';
 export { FloatTargetsUnavailableError } from './drawer/screen-filter';
 export { BundleTileSource, type BundleTileSourceOptions } from './tiles/bundle-tile-source';
@@ -20,25 +21,25 @@ export {
   type RelightLayer, type PlaneGroup, type LayerType, type PtmColorspace, type InputColorSpace,
 } from './iiif/relight-service';
 export { imageGeometry, commonGeometry, type ImageGeometry } from './iiif/image-info';
+export { LanternaError } from './errors';
 export {
-  LanternaError, ManifestError, MissingRelightServiceError, RelightServiceError, ImageInfoError,
-  MismatchedPlanesError, FetchError, OverlayError,
+  ManifestError, MissingRelightServiceError, RelightServiceError, ImageInfoError, MismatchedPlanesError, FetchError,
+  OverlayError,
 } from './iiif/errors';
-export { ShaderError } from './layers/programs';
+export { ShaderError } from './gl/compile';
 export { ptmWeights, relightPtmPixel, BASES, PTM_BASIS_TERMS, type LightBasis } from './math/ptm-basis';
 export { hshWeights } from './math/hsh-basis';
 export {
   lightFromPointer, lightFromProjection, nudgeLight, OVERHEAD_LIGHT, type Light, type NudgeDirection,
 } from './math/light';
-export {
-  RENDER_MODES, MODE_LABELS, applicableModes, shadingClass, isRenderMode, type RenderMode, type ShadingClass,
-} from './render/modes';
+export { RENDER_MODES, MODE_LABELS, isRenderMode, type RenderMode, type ShadingClass } from './render/modes';
+export { applicableModes, shadingClass } from './layers/layer-kinds';
 export {
   DEFAULT_RENDER_PARAMS, PARAM_SPECS, mergeParams, relevantParams, type RenderParams, type RenderParamName,
 } from './render/params';
-export { createControls, type Controls } from './ui/controls';
-export { createLensControls, type LensControls } from './ui/lens-controls';
-export { createHypertext, NO_ANNOTATION_TEXT, type HypertextWidget } from './ui/hypertext';
+export { createControls, type Controls } from './panel/controls';
+export { createLensControls, type LensControls } from './panel/lens-controls';
+export { createHypertext, NO_ANNOTATION_TEXT, type HypertextWidget } from './panel/hypertext';
 export { sanitizeHtml } from './ui/sanitize-html';
 export type { DragMode } from './ui/interaction';
 export { routeGesture, routeWheel, isLensAction, type GestureAction, type GestureStart } from './ui/gesture-routing';

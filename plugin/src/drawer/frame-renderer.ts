@@ -4,13 +4,13 @@
  * (premultiplied source-over, everywhere or only inside or outside the lens). Owns the GL passes
  * of one context; knows nothing of OpenSeadragon (the drawer describes the frame).
  */
-import type { DrawerLens } from '../compositor';
-import type { RelightLayer } from '../iiif/relight-service';
+import type { ResolvedLayer } from '../layers/resolved-layer';
 import type { AnnotationDisplay } from '../lens/lens-state';
 import type { Light } from '../math/light';
 import type { Mat3 } from '../math/matrix';
 import type { RenderMode } from '../render/modes';
 import type { RenderParams } from '../render/params';
+import type { DrawerLens } from './compositor';
 import { LayerPass, type ScissorBox, type TileQuad } from './layer-pass';
 import { LensTarget, type DeviceCircle } from './lens-target';
 import { OverlayPass } from './overlay-pass';
@@ -24,7 +24,7 @@ export interface FrameItem<T> {
 
 /** A relightable item of a frame. */
 export interface FrameLayer<T> extends FrameItem<T> {
-  readonly layer: RelightLayer;
+  readonly layer: ResolvedLayer;
 }
 
 /** What to draw in one frame. */
@@ -64,7 +64,7 @@ export class FrameRenderer {
    *
    * @throws {@link ShaderError} or {@link FloatTargetsUnavailableError}
    */
-  prepare(layer: RelightLayer, mode: RenderMode, params: RenderParams): void {
+  prepare(layer: ResolvedLayer, mode: RenderMode, params: RenderParams): void {
     this.layerPass.prepare(layer, mode, params);
   }
 

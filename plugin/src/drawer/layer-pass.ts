@@ -7,13 +7,13 @@
 import * as twgl from 'twgl.js';
 import type { Stage } from '../gl/glsl/modes.glsl';
 import { U_FILTERED, U_MATRIX, U_PLANES, U_TEX_SCALE } from '../gl/uniforms';
-import type { RelightLayer } from '../iiif/relight-service';
 import { layerUniforms, type LayerUniforms } from '../layers/layer-uniforms';
-import { ProgramCache, programSpec } from '../layers/programs';
+import { ProgramCache } from '../layers/programs';
+import type { ResolvedLayer } from '../layers/resolved-layer';
 import type { Light } from '../math/light';
 import type { Mat3 } from '../math/matrix';
 import { modeFilter } from '../render/filter-plan';
-import { applicableModes, DEFAULT_RENDER_MODE, type RenderMode } from '../render/modes';
+import { DEFAULT_RENDER_MODE, type RenderMode } from '../render/modes';
 import type { RenderParams } from '../render/params';
 import { ScreenFilter } from './screen-filter';
 
@@ -29,7 +29,7 @@ export interface TileQuad {
 
 /** One item to relight. */
 export interface LayerDraw<T> {
-  readonly layer: RelightLayer;
+  readonly layer: ResolvedLayer;
   /** The requested mode (a layer it does not apply to is drawn in the default mode). */
   readonly mode: RenderMode;
   readonly params: RenderParams;
@@ -65,23 +65,22 @@ export class LayerPass {
    *
    * @throws {@link ShaderError} or {@link FloatTargetsUnavailableError}
    */
-  prepare(layer: RelightLayer, mode: RenderMode, params: RenderParams): void {
-    const kind = programSpec(layer);
+  prepare(layer: ResolvedLayer, mode: RenderMode, params: RenderParams): void {
     const gammaOne = params.gamma === 1;
     if (modeFilter(mode)) {
       this.screenFilter ??= new ScreenFilter(this.gl);
     }
     for (const stage of modeStages(mode)) {
-      this.programs.get(kind, mode, stage, gammaOne);
+      this.programs.get(layer.program, mode, stage, gammaOne);
     }
   }
 
   /** Relight one item (see {@link LayerDraw}). */
   draw<T>(d: LayerDraw<T>): void {
     const gl = this.gl;
-    const mode = applicableModes(d.layer).includes(d.mode) ? d.mode : DEFAULT_RENDER_MODE;
-    const kind = programSpec(d.layer);
-    const uniforms = layerUniforms(d.layer, d.light.lu, d.light.lv, d.params);
+    const mode = d.layer.kind.modes.includes(d.mode) ? d.mode : DEFAULT_RENDER_MODE;
+    const spec = d.layer.program;
+    const uniforms = layerUniforms(d.layer, d.light, d.params);
     const gammaOne = d.params.gamma === 1;
     const filter = modeFilter(mode);
     const { box } = d;
@@ -95,7 +94,7 @@ export class LayerPass {
     };
     if (!filter) {
       bindTarget();
-      this.drawTiles(d, this.programs.get(kind, mode, 'direct', gammaOne), uniforms, null);
+      this.drawTiles(d, this.programs.get(spec, mode, 'direct', gammaOne), uniforms, null);
       gl.disable(gl.SCISSOR_TEST);
       return;
     }
@@ -103,10 +102,10 @@ export class LayerPass {
     gl.disable(gl.SCISSOR_TEST);
     this.screenFilter ??= new ScreenFilter(gl);
     this.screenFilter.beginQuantity(gl.drawingBufferWidth, gl.drawingBufferHeight);
-    this.drawTiles(d, this.programs.get(kind, mode, 'quantity', gammaOne), uniforms, null);
+    this.drawTiles(d, this.programs.get(spec, mode, 'quantity', gammaOne), uniforms, null);
     const filtered = this.screenFilter.filter(filter);
     bindTarget();
-    this.drawTiles(d, this.programs.get(kind, mode, 'combine', gammaOne), uniforms, filtered);
+    this.drawTiles(d, this.programs.get(spec, mode, 'combine', gammaOne), uniforms, filtered);
     gl.disable(gl.SCISSOR_TEST);
   }
 

@@ -6,8 +6,8 @@ import * as twgl from 'twgl.js';
 import { FULLSCREEN_VERTEX_SHADER } from '../gl/glsl/box.glsl';
 import { LENS_FRAGMENT_SHADER } from '../gl/glsl/composite.glsl';
 import { U_LENS_CIRCLE, U_OPACITY, U_SOURCE } from '../gl/uniforms';
-import { LanternaError } from '../iiif/errors';
-import { compileProgram } from '../layers/programs';
+import { LanternaError } from '../errors';
+import { compileProgram } from '../gl/compile';
 
 /** A circle in device pixels, y up (`gl_FragCoord`). */
 export interface DeviceCircle {

@@ -7,7 +7,7 @@ import { OVERLAY_FRAGMENT_SHADER } from '../gl/glsl/composite.glsl';
 import { QUAD_VERTEX_SHADER } from '../gl/glsl/quad.vert';
 import { U_LENS_CIRCLE, U_MASK, U_MATRIX, U_PLANES, U_TEX_SCALE } from '../gl/uniforms';
 import type { AnnotationDisplay } from '../lens/lens-state';
-import { compileProgram } from '../layers/programs';
+import { compileProgram } from '../gl/compile';
 import type { Mat3 } from '../math/matrix';
 import type { DeviceCircle } from './lens-target';
 

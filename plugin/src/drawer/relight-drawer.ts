@@ -6,16 +6,17 @@
  * base layers, the lens layer or overlays, and where) to the {@link FrameRenderer}, which draws it.
  */
 import OpenSeadragon from 'openseadragon';
-import { LanternaError } from '../iiif/errors';
+import { LanternaError } from '../errors';
 import type { RelightLayer } from '../iiif/relight-service';
-import type { Compositor, DrawerLens } from '../compositor';
+import { resolveLayer, type ResolvedLayer } from '../layers/resolved-layer';
 import type { AnnotationDisplay } from '../lens/lens-state';
 import { lensInDevicePixels } from '../math/lens';
-import { lightFromProjection, OVERHEAD_LIGHT, type Light } from '../math/light';
+import { OVERHEAD_LIGHT, type Light } from '../math/light';
 import { modelMatrix, multiply, rotationAbout, viewMatrix, type Mat3 } from '../math/matrix';
 import { DEFAULT_RENDER_MODE, type RenderMode } from '../render/modes';
 import { DEFAULT_RENDER_PARAMS, type RenderParams } from '../render/params';
 import { BUNDLE_DATA_TYPE, type PlaneBundle } from '../tiles/bundle';
+import type { Compositor, DrawerLens } from './compositor';
 import { FrameRenderer, type FrameItem, type FrameLayer } from './frame-renderer';
 import type { TileQuad } from './layer-pass';
 import { uploadPlaneBundle } from './plane-texture';
@@ -70,7 +71,8 @@ export class RelightDrawer extends OpenSeadragon.DrawerBase implements Composito
   declare private frames: FrameRenderer | null;
   declare private mode: RenderMode;
   declare private params: RenderParams;
-  declare private layers: WeakMap<object, RelightLayer>;
+  declare private layers: WeakMap<object, ResolvedLayer>;
+  declare private resolved: WeakMap<RelightLayer, ResolvedLayer>;
   declare private roles: WeakMap<object, 'lens' | 'overlay'>;
   declare private lens: DrawerLens | null;
   declare private overlayDisplay: AnnotationDisplay;
@@ -85,6 +87,7 @@ export class RelightDrawer extends OpenSeadragon.DrawerBase implements Composito
   constructor(options: ConstructorParameters<typeof OpenSeadragon.DrawerBase>[0]) {
     super(options);
     this.layers = new WeakMap();
+    this.resolved = new WeakMap();
     this.roles = new WeakMap();
     this.lens = null;
     this.overlayDisplay = 'everywhere';
@@ -141,12 +144,12 @@ export class RelightDrawer extends OpenSeadragon.DrawerBase implements Composito
 
   /** Declare how a TiledImage is drawn. Items without a layer are not drawn. */
   setLayer(tiledImage: object, layer: RelightLayer): void {
-    this.layers.set(tiledImage, layer);
+    this.layers.set(tiledImage, this.resolve(layer));
   }
 
   /** Draw `tiledImage` as the lens layer: inside the lens only (see {@link RelightDrawer.setLens}). */
   setLensItem(tiledImage: object, layer: RelightLayer): void {
-    this.layers.set(tiledImage, layer);
+    this.layers.set(tiledImage, this.resolve(layer));
     this.roles.set(tiledImage, 'lens');
   }
 
@@ -168,9 +171,12 @@ export class RelightDrawer extends OpenSeadragon.DrawerBase implements Composito
     this.overlayDisplay = display;
   }
 
-  /** Set the light (clamped to the unit disk). Call `viewer.forceRedraw()` afterwards. */
-  setLight(lu: number, lv: number): void {
-    this.light = lightFromProjection(lu, lv);
+  /**
+   * Set the light (from `lightFromProjection`, `lightFromPointer` or `nudgeLight`, which clamp it;
+   * it is used as given). Call `viewer.forceRedraw()` afterwards.
+   */
+  setLight(light: Light): void {
+    this.light = light;
   }
 
   /** The current light. */
@@ -203,7 +209,7 @@ export class RelightDrawer extends OpenSeadragon.DrawerBase implements Composito
    * @throws {@link ShaderError} or {@link FloatTargetsUnavailableError}
    */
   prepare(layer: RelightLayer, mode: RenderMode, params: RenderParams = this.params): void {
-    this.frames?.prepare(layer, mode, params);
+    this.frames?.prepare(this.resolve(layer), mode, params);
   }
 
   override setImageSmoothingEnabled(enabled: boolean): void {
@@ -271,6 +277,16 @@ export class RelightDrawer extends OpenSeadragon.DrawerBase implements Composito
     this.canvas.width = 0;
     this.canvas.height = 0;
     this.canvas.remove();
+  }
+
+  /** A layer resolved (kind, program, fixed uniforms), once per layer object. */
+  private resolve(layer: RelightLayer): ResolvedLayer {
+    let resolved = this.resolved.get(layer);
+    if (!resolved) {
+      resolved = resolveLayer(layer);
+      this.resolved.set(layer, resolved);
+    }
+    return resolved;
   }
 
   private resizeIfNeeded(): void {

@@ -5,8 +5,8 @@
 import * as twgl from 'twgl.js';
 import { BOX_FRAGMENT_SHADER, FULLSCREEN_VERTEX_SHADER } from '../gl/glsl/box.glsl';
 import { U_RADIUS, U_SOURCE, U_STEP } from '../gl/uniforms';
-import { LanternaError } from '../iiif/errors';
-import { compileProgram } from '../layers/programs';
+import { LanternaError } from '../errors';
+import { compileProgram } from '../gl/compile';
 import { boxPasses, type BoxFilter } from '../render/filter-plan';
 
 /** Float colour buffers are not renderable in this context (no `EXT_color_buffer_float`). */

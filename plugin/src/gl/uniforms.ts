@@ -23,12 +23,8 @@ export const U_HALF = 'u_half';
 export const U_HSH_NORMAL_WEIGHTS = 'u_hshNormalWeights';
 /** mat3: inverse of the normal-estimate light matrix. */
 export const U_HSH_NORMAL_INV = 'u_hshNormalInv';
-/** ivec4: plane index of the svbrdf normals, kd, ks and gloss maps (-1 when absent). */
-export const U_MAPS = 'u_maps';
 /** vec2: svbrdf glossLimits. */
 export const U_GLOSS_LIMITS = 'u_glossLimits';
-/** int: 1 when svbrdf kd/ks are sRGB-encoded. */
-export const U_SRGB_INPUT = 'u_srgbInput';
 /** sampler2D: the box-filtered (q·a, a) of the unsharp modes (combine stage). */
 export const U_FILTERED = 'u_filtered';
 /** sampler2D: the input of a box pass. */

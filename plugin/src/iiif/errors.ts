@@ -1,14 +1,7 @@
 /**
  * Error classes raised while reading a Lanterna manifest or its IIIF image services.
  */
-
-/** Base class of every error the plugin raises on purpose. */
-export class LanternaError extends Error {
-  constructor(message: string, options?: ErrorOptions) {
-    super(message, options);
-    this.name = new.target.name;
-  }
-}
+import { LanternaError } from '../errors';
 
 /** The manifest is not a usable IIIF Presentation 3 manifest (no canvas, no painting image...). */
 export class ManifestError extends LanternaError {}

@@ -1,30 +1,28 @@
 /**
- * Uniform values of a relight layer (pure: no GL), checked against the uniform names with `satisfies`.
+ * Uniform values of a relight layer (pure: no GL): those fixed while the layer is drawn, computed
+ * once when it is set, and those that follow the light and the parameters, computed per frame.
  */
+import { MAX_PLANES, MAX_TERMS, U_BIAS, U_HALF, U_LIGHT, U_PARAM, U_SCALE, U_WEIGHTS } from '../gl/uniforms';
 import type { RelightLayer } from '../iiif/relight-service';
-import { svbrdfMapIndices } from '../iiif/relight-service';
-import { hshNormalInverse, hshNormalWeights, hshWeights } from '../math/hsh-basis';
-import { lightFromProjection } from '../math/light';
-import { ptmWeights } from '../math/ptm-basis';
+import type { Light } from '../math/light';
 import { DEFAULT_RENDER_PARAMS, PARAM_NAMES, type RenderParams } from '../render/params';
-import {
-  MAX_PLANES, MAX_TERMS, U_BIAS, U_GLOSS_LIMITS, U_HALF, U_HSH_NORMAL_INV, U_HSH_NORMAL_WEIGHTS, U_LIGHT,
-  U_MAPS, U_PARAM, U_SCALE, U_SRGB_INPUT, U_WEIGHTS,
-} from '../gl/uniforms';
+import type { LayerKind } from './layer-kinds';
 
-/** Uniforms that depend on the layer, the light and the parameters (not on the tile). */
+/** Uniforms fixed for a layer: its plane groups' scale and bias, and its kind's own uniforms. */
+export interface FixedUniforms {
+  [U_SCALE]: Float32Array;
+  [U_BIAS]: Float32Array;
+  [kindUniform: string]: Float32Array;
+}
+
+/** Every uniform of a layer draw that does not depend on the tile. */
 export interface LayerUniforms {
   [U_SCALE]: Float32Array;
   [U_BIAS]: Float32Array;
   [U_WEIGHTS]: Float32Array;
   [U_LIGHT]: Float32Array;
   [U_HALF]: Float32Array;
-  [U_HSH_NORMAL_WEIGHTS]: Float32Array;
-  [U_HSH_NORMAL_INV]: Float32Array;
-  [U_MAPS]: Int32Array;
-  [U_GLOSS_LIMITS]: Float32Array;
-  [U_SRGB_INPUT]: number;
-  [param: string]: Float32Array | Int32Array | number;
+  [uniform: string]: Float32Array | number;
 }
 
 /** Pad per-channel values to a vec3 (a single-band group repeats its value). */
@@ -33,43 +31,40 @@ function vec3Of(values: readonly number[]): number[] {
 }
 
 /**
- * Per-layer uniform values: scale and bias padded to {@link MAX_PLANES} vec3s, the basis weights,
- * light and half vector, the render parameters and the type's own constants.
- *
- * @param layer - the validated relight layer
- * @param lu - light x (right)
- * @param lv - light y (up)
- * @param params - render parameters
+ * The uniforms fixed for a layer: scale and bias padded to {@link MAX_PLANES} vec3s, and the kind's
+ * own (HSH: the normal-estimate weights; svbrdf: the gloss limits).
  */
-export function layerUniforms(layer: RelightLayer, lu: number, lv: number,
-  params: RenderParams = DEFAULT_RENDER_PARAMS): LayerUniforms {
+export function fixedUniforms(layer: RelightLayer, kind: LayerKind): FixedUniforms {
   const scale = new Float32Array(MAX_PLANES * 3);
   const bias = new Float32Array(MAX_PLANES * 3);
   layer.planes.forEach((p, i) => {
     scale.set(vec3Of(p.scale), i * 3);
     bias.set(vec3Of(p.bias), i * 3);
   });
+  return { [U_SCALE]: scale, [U_BIAS]: bias, ...kind.uniforms(layer) };
+}
+
+/**
+ * Per-draw uniform values: the layer's fixed uniforms, the basis weights of the light (zero for
+ * kinds without a basis), the light and half vector, and the render parameters.
+ *
+ * @param layer - the layer's kind and fixed uniforms (a resolved layer)
+ * @param light - the light (already on the unit hemisphere: it is not clamped again)
+ * @param params - render parameters
+ */
+export function layerUniforms(layer: { readonly kind: LayerKind; readonly uniforms: FixedUniforms }, light: Light,
+  params: RenderParams = DEFAULT_RENDER_PARAMS): LayerUniforms {
   const weights = new Float32Array(MAX_TERMS);
-  if (layer.layerType === 'ptm') {
-    weights.set(ptmWeights(lu, lv));
-  } else if (layer.layerType === 'hsh') {
-    weights.set(hshWeights(lu, lv, layer.terms));
+  if (layer.kind.weights) {
+    weights.set(layer.kind.weights(light));
   }
-  const l = lightFromProjection(lu, lv);
-  const hz = l.lz + 1;
-  const hl = Math.hypot(l.lu, l.lv, hz);
-  const maps = svbrdfMapIndices(layer);
+  const hz = light.lz + 1;
+  const hl = Math.hypot(light.lu, light.lv, hz);
   const out: LayerUniforms = {
-    [U_SCALE]: scale,
-    [U_BIAS]: bias,
+    ...layer.uniforms,
     [U_WEIGHTS]: weights,
-    [U_LIGHT]: Float32Array.of(l.lu, l.lv, l.lz),
-    [U_HALF]: Float32Array.of(l.lu / hl, l.lv / hl, hz / hl),
-    [U_HSH_NORMAL_WEIGHTS]: Float32Array.from(hshNormalWeights(layer.layerType === 'hsh' ? layer.terms : 16)),
-    [U_HSH_NORMAL_INV]: Float32Array.from(hshNormalInverse()),
-    [U_MAPS]: Int32Array.of(maps.normals, maps.kd, maps.ks, maps.gloss),
-    [U_GLOSS_LIMITS]: Float32Array.from(layer.glossLimits),
-    [U_SRGB_INPUT]: layer.inputColorSpace === 'srgb' ? 1 : 0,
+    [U_LIGHT]: Float32Array.of(light.lu, light.lv, light.lz),
+    [U_HALF]: Float32Array.of(light.lu / hl, light.lv / hl, hz / hl),
   };
   for (const name of PARAM_NAMES) {
     out[U_PARAM[name]] = params[name];

@@ -1,121 +1,52 @@
 /**
  * Layer programs: one fragment shader per layer kind × render mode × stage, built from the shared
- * prelude, colour helpers and mode `main()` plus the layer's functions, compiled on first use.
+ * prelude, colour helpers and mode `main()` plus the kind's layer functions, compiled on first use.
  */
-import * as twgl from 'twgl.js';
+import type * as twgl from 'twgl.js';
+import { compileProgram } from '../gl/compile';
 import { COLOR_GLSL } from '../gl/glsl/color.glsl';
 import { MODE_DEFINES, MODES_MAIN_GLSL, STAGE, type Stage } from '../gl/glsl/modes.glsl';
 import { planesPrelude } from '../gl/glsl/planes.glsl';
 import { QUAD_VERTEX_SHADER } from '../gl/glsl/quad.vert';
-import { LanternaError } from '../iiif/errors';
-import { svbrdfMapIndices, type RelightLayer } from '../iiif/relight-service';
+import type { RelightLayer } from '../iiif/relight-service';
 import { RENDER_MODES, type RenderMode } from '../render/modes';
-import { HSH_FRAGMENT_BODY } from './hsh/hsh.frag';
-import { IMAGE_FRAGMENT_BODY } from './image/image.frag';
-import { ptmFragmentBody } from './ptm/ptm.frag';
-import { SVBRDF_FRAGMENT_BODY } from './svbrdf/svbrdf.frag';
-
-/** Program kinds: one set of layer functions (and compile-time constants) each. */
-export type ProgramKind = 'ptm-lrgb' | 'ptm-rgb' | 'hsh4' | 'hsh9' | 'hsh16' | 'svbrdf' | 'image';
-
-/** Layer functions and extra defines per program kind. */
-const KINDS: Readonly<Record<ProgramKind, { body: string; defines?: Record<string, number> }>> = {
-  'ptm-lrgb': { body: ptmFragmentBody('lrgb') },
-  'ptm-rgb': { body: ptmFragmentBody('rgb') },
-  hsh4: { body: HSH_FRAGMENT_BODY, defines: { TERMS: 4 } },
-  hsh9: { body: HSH_FRAGMENT_BODY, defines: { TERMS: 9 } },
-  hsh16: { body: HSH_FRAGMENT_BODY, defines: { TERMS: 16 } },
-  svbrdf: { body: SVBRDF_FRAGMENT_BODY },
-  image: { body: IMAGE_FRAGMENT_BODY },
-};
+import type { KindGlsl } from './layer-kinds';
 
 /**
- * What a layer's program is built from: its kind plus compile-time facts of the layer (svbrdf: which
- * maps exist and where, sRGB input), so that the shader never branches on a uniform for them.
+ * What a layer's program is built from: its kind's GLSL plus compile-time facts of the layer (svbrdf:
+ * which maps exist and where, their encoding), so that the shader never branches on a uniform for them.
  */
 export interface ProgramSpec {
-  readonly kind: ProgramKind;
-  /** Extra `#define`s (besides the kind's own). */
+  readonly glsl: KindGlsl;
+  /** The layer's `#define`s (besides the kind's own). */
   readonly defines: Readonly<Record<string, number>>;
-  /** Cache key: kind and defines. */
+  /** Cache key: program name and the layer's defines. */
   readonly key: string;
 }
 
-/** Compile-time svbrdf facts: plane index of each map (-1 when absent) and whether kd/ks are sRGB. */
-export function svbrdfDefines(layer: RelightLayer): Record<string, number> {
-  const maps = svbrdfMapIndices(layer);
-  return {
-    SV_NORMALS: maps.normals,
-    SV_KD: maps.kd,
-    SV_KS: maps.ks,
-    SV_GLOSS: maps.gloss,
-    SV_SRGB: layer.inputColorSpace === 'srgb' ? 1 : 0,
-    SV_DISPLAY: layer.inputColorSpace === 'display' ? 1 : 0,
-  };
-}
-
-/** The program spec that draws a layer. */
-export function programSpec(layer: RelightLayer): ProgramSpec {
-  const kind = programKind(layer);
-  const defines = kind === 'svbrdf' ? svbrdfDefines(layer) : {};
-  const key = [kind, ...Object.entries(defines).map(([k, v]) => `${k}=${v}`)].join(',');
-  return { kind, defines, key };
-}
-
-/** A shader failed to compile or link. */
-export class ShaderError extends LanternaError {}
-
-/** The program kind that draws a layer. */
-export function programKind(layer: RelightLayer): ProgramKind {
-  switch (layer.layerType) {
-    case 'ptm':
-      return layer.colorspace === 'lrgb' ? 'ptm-lrgb' : 'ptm-rgb';
-    case 'hsh':
-      return `hsh${layer.terms}` as ProgramKind;
-    case 'svbrdf':
-      return 'svbrdf';
-    default:
-      return 'image';
-  }
+/** The program spec that draws `layer` with its kind's GLSL. */
+export function programSpec(glsl: KindGlsl, layer: RelightLayer): ProgramSpec {
+  const defines = glsl.layerDefines?.(layer) ?? {};
+  const key = [glsl.name, ...Object.entries(defines).map(([k, v]) => `${k}=${v}`)].join(',');
+  return { glsl, defines, key };
 }
 
 /**
- * Fragment shader source of a layer kind in a render mode and stage.
+ * Fragment shader source of a layer program in a render mode and stage.
  *
- * @param spec - a program kind, or a {@link ProgramSpec} with the layer's compile-time facts
  * @param gammaOne - compile the post step for `gamma` = 1 (no `pow`); otherwise it reads `u_gamma`
  */
-export function fragmentShaderSource(spec: ProgramKind | ProgramSpec, mode: RenderMode, stage: Stage,
-  gammaOne = false): string {
-  const kind = typeof spec === 'string' ? spec : spec.kind;
-  const { body, defines } = KINDS[kind];
+export function fragmentShaderSource(spec: ProgramSpec, mode: RenderMode, stage: Stage, gammaOne = false): string {
+  const { name, body, defines } = spec.glsl;
   const all = {
     ...MODE_DEFINES,
     ...defines,
-    ...(kind === 'svbrdf' ? { SV_NORMALS: 0, SV_KD: 1, SV_KS: 2, SV_GLOSS: 3, SV_SRGB: 0, SV_DISPLAY: 0 } : {}),
-    ...(typeof spec === 'string' ? {} : spec.defines),
+    ...spec.defines,
     MODE: RENDER_MODES.indexOf(mode),
     STAGE: STAGE[stage],
     GAMMA_ONE: gammaOne ? 1 : 0,
   };
-  return planesPrelude(`lanterna-${kind}-${mode}-${stage}`, all) + COLOR_GLSL + body + MODES_MAIN_GLSL;
-}
-
-/**
- * Compile a program from a vertex and a fragment shader.
- *
- * @throws {@link ShaderError} if it fails
- */
-export function compileProgram(gl: WebGL2RenderingContext, vertex: string, fragment: string, name: string):
-  twgl.ProgramInfo {
-  const errors: string[] = [];
-  const info = twgl.createProgramInfo(gl, [vertex, fragment], {
-    errorCallback: (msg: string) => { errors.push(msg); },
-  }) as twgl.ProgramInfo | null;
-  if (!info) {
-    throw new ShaderError(`program ${name} failed: ${errors.join('\n')}`);
-  }
-  return info;
+  return planesPrelude(`lanterna-${name}-${mode}-${stage}`, all) + COLOR_GLSL + body + MODES_MAIN_GLSL;
 }
 
 /** Layer programs of one GL context, compiled on first use. */

@@ -1,7 +1,7 @@
 /**
  * The lens's state and how `setLens` updates it. Pure: no DOM, no GL.
  */
-import { LanternaError } from '../iiif/errors';
+import { LanternaError } from '../errors';
 import { clampRadius } from '../math/lens';
 import { DEFAULT_RENDER_MODE, type RenderMode } from '../render/modes';
 import { DEFAULT_RENDER_PARAMS, mergeParams, type RenderParams } from '../render/params';

@@ -2,7 +2,7 @@
  * Add a {@link BundleTileSource} TiledImage to a viewer (layers, lens layers, overlay levels).
  */
 import OpenSeadragon from 'openseadragon';
-import { LanternaError } from '../iiif/errors';
+import { LanternaError } from '../errors';
 import type { ImageGeometry } from '../iiif/image-info';
 import { BundleTileSource } from './bundle-tile-source';
 

@@ -3,6 +3,7 @@
  * Shift+drag does the other; right- or middle-drag always pans; wheel and pinch zoom (OSD default).
  */
 import OpenSeadragon from 'openseadragon';
+import { lightFromPointer, type Light } from '../math/light';
 
 /** What a plain primary-button (or one-finger) drag does. */
 export type DragMode = 'light' | 'pan';
@@ -11,8 +12,8 @@ export type DragMode = 'light' | 'pan';
 export interface InteractionOptions {
   /** Current drag mode. */
   getMode(): DragMode;
-  /** Called with the pointer position in the viewer element (CSS px) and the element size. */
-  moveLight(x: number, y: number, width: number, height: number): void;
+  /** Called with the light under the pointer (its position in the viewer element, {@link lightFromPointer}). */
+  setLight(light: Light): void;
   /** True while another handler (the lens) owns the current gesture: no light, no pan. */
   claimed?(): boolean;
 }
@@ -36,7 +37,7 @@ export function attachInteraction(viewer: OpenSeadragon.Viewer, options: Interac
   let lightDrag = false;
 
   const light = (e: PointerEventArgs): void => {
-    options.moveLight(e.position.x, e.position.y, element.clientWidth, element.clientHeight);
+    options.setLight(lightFromPointer(e.position.x, e.position.y, element.clientWidth, element.clientHeight));
   };
   const claimed = (): boolean => options.claimed?.() ?? false;
   const onPress = (e: PointerEventArgs): void => {

@@ -2,7 +2,7 @@
  * Waiting for a viewer to settle: every visible item fully loaded and drawn, nothing animating.
  */
 import type OpenSeadragon from 'openseadragon';
-import { LanternaError } from '../iiif/errors';
+import { LanternaError } from '../errors';
 
 function nextFrame(): Promise<void> {
   return new Promise((resolve) => { requestAnimationFrame(() => { resolve(); }); });

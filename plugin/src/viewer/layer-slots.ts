@@ -3,17 +3,19 @@
  * TiledImage is added (at opacity 0, so it loads nothing) on first use.
  */
 import OpenSeadragon from 'openseadragon';
+import { UnknownLayerError, type LayerInfo } from '../api/viewer-api';
 import { loadLayer, type InfoCache, type LoadedLayer } from '../iiif/load';
 import type { ManifestLayer } from '../iiif/manifest';
 import type { RelightLayer } from '../iiif/relight-service';
+import { layerKindOf, type LayerKind } from '../layers/layer-kinds';
 import { currentLevel, imagePxPerDevicePx, maxLevelOf } from '../math/levels';
-import { applicableModes } from '../render/modes';
 import { addBundleItem } from '../tiles/add-item';
-import { UnknownLayerError, type LayerInfo } from './api';
 
 /** One manifest layer and what has been opened of it. */
 export interface LayerSlot {
   readonly info: ManifestLayer;
+  /** The layer's kind, looked up once when the slot is added. */
+  readonly kind: LayerKind;
   loaded?: LoadedLayer;
   item?: Promise<OpenSeadragon.TiledImage>;
   tiledImage?: OpenSeadragon.TiledImage;
@@ -27,10 +29,6 @@ export interface LayerSlotsOptions {
   readonly infoCache: InfoCache;
   /** Called once per new layer item (e.g. to tell the drawer how to draw it). */
   register(item: OpenSeadragon.TiledImage, layer: RelightLayer): void;
-}
-
-function previewIndex(layer: LoadedLayer['layer']): number {
-  return layer.layerType === 'ptm' && layer.colorspace === 'lrgb' ? 2 : 0;
 }
 
 /** The layer slots of a viewer, in manifest order. */
@@ -47,7 +45,7 @@ export class LayerSlots {
   /** Add a slot per manifest layer. */
   add(layers: readonly ManifestLayer[]): void {
     for (const info of layers) {
-      this.#slots.set(info.id, { info });
+      this.#slots.set(info.id, { info, kind: layerKindOf(info.layer) });
     }
   }
 
@@ -76,8 +74,8 @@ export class LayerSlots {
 
   /** The layers, in manifest order. */
   list(): LayerInfo[] {
-    return [...this.#slots.values()].map(({ info }) => ({
-      id: info.id, label: info.label, layerType: info.layer.layerType, modes: applicableModes(info.layer),
+    return [...this.#slots.values()].map(({ info, kind }) => ({
+      id: info.id, label: info.label, layerType: info.layer.layerType, shading: kind.shading, modes: [...kind.modes],
     }));
   }
 
@@ -96,13 +94,13 @@ export class LayerSlots {
     return slot.loaded;
   }
 
-  /** Add a (invisible) TiledImage of a loaded layer's planes; `what` names it in errors. */
-  addItem(loaded: LoadedLayer, what: string): Promise<OpenSeadragon.TiledImage> {
+  /** Add a (invisible) TiledImage of a slot's loaded planes; `what` names it in errors. */
+  addItem(slot: LayerSlot, loaded: LoadedLayer, what: string): Promise<OpenSeadragon.TiledImage> {
     return addBundleItem(this.#viewer, {
       infos: loaded.infos,
       geometry: loaded.geometry,
       formats: loaded.layer.planes.map((p) => p.format),
-      previewIndex: previewIndex(loaded.layer),
+      previewIndex: slot.kind.previewPlane,
       opacity: 0,
       what,
     });
@@ -112,7 +110,7 @@ export class LayerSlots {
   itemOf(slot: LayerSlot): Promise<OpenSeadragon.TiledImage> {
     slot.item ??= (async () => {
       const loaded = await this.loadedOf(slot);
-      const item = await this.addItem(loaded, `layer ${loaded.id}`);
+      const item = await this.addItem(slot, loaded, `layer ${loaded.id}`);
       this.#options.register(item, loaded.layer);
       slot.tiledImage = item;
       return item;

@@ -3,17 +3,17 @@
  * it, the lens items (see {@link LensController}) and what the drawer is told about it.
  */
 import type OpenSeadragon from 'openseadragon';
-import type { Compositor } from '../compositor';
+import { RenderModeError, UnknownLayerError } from '../api/viewer-api';
+import type { Compositor } from '../drawer/compositor';
 import type { RelightLayer } from '../iiif/relight-service';
 import { LensController } from '../lens/lens-controller';
 import { updateLens, type LensState, type LensUpdate } from '../lens/lens-state';
 import type { Circle } from '../math/lens';
-import { applicableModes, DEFAULT_RENDER_MODE, isRenderMode, type RenderMode } from '../render/modes';
+import { DEFAULT_RENDER_MODE, isRenderMode, type RenderMode } from '../render/modes';
 import type { RenderParams } from '../render/params';
 import type { DragMode } from '../ui/interaction';
 import { attachLensGestures, type LensGestures } from '../ui/lens-gestures';
 import { createLensRing, type LensRing } from '../ui/lens-ring';
-import { RenderModeError, UnknownLayerError } from './api';
 import type { LayerSlot, LayerSlots } from './layer-slots';
 
 /** Options of {@link LensWiring}. */
@@ -58,7 +58,7 @@ export class LensWiring {
           throw new UnknownLayerError(`no layer ${JSON.stringify(layerId)}`);
         }
         const loaded = await options.slots.loadedOf(slot);
-        const item = await options.slots.addItem(loaded, `the lens layer ${loaded.id}`);
+        const item = await options.slots.addItem(slot, loaded, `the lens layer ${loaded.id}`);
         options.compositor().setLensItem(item, loaded.layer);
         return item;
       },
@@ -92,23 +92,23 @@ export class LensWiring {
   set(update: LensUpdate): Promise<void> {
     const mode = this.#check(update);
     const next = updateLens(this.#lens, { ...update, mode });
-    const layer = next.layer ? this.#options.slots.get(next.layer)?.info : this.#options.active()?.info;
-    if (layer && next.enabled) {
-      this.#options.prepare(layer.layer, next.mode, next.params);
+    const slot = next.layer ? this.#options.slots.get(next.layer) : this.#options.active();
+    if (slot && next.enabled) {
+      this.#options.prepare(slot.info.layer, next.mode, next.params);
     }
     this.#lens = next;
     return this.apply();
   }
 
   /**
-   * The active layer changed to `layer`: a lens that follows the active layer keeps its mode if it
+   * The active layer changed to `slot`'s: a lens that follows the active layer keeps its mode if it
    * applies there, and is shown again.
    */
-  async followActive(layer: RelightLayer): Promise<void> {
+  async followActive(slot: LayerSlot): Promise<void> {
     if (this.#lens.layer) {
       return;
     }
-    if (!applicableModes(layer).includes(this.#lens.mode)) {
+    if (!slot.kind.modes.includes(this.#lens.mode)) {
       this.#lens = { ...this.#lens, mode: DEFAULT_RENDER_MODE };
     }
     await this.apply();
@@ -151,7 +151,7 @@ export class LensWiring {
       throw new UnknownLayerError(`no layer ${JSON.stringify(layerId)} for the lens `
         + `(layers: ${this.#options.slots.names()})`);
     }
-    const modes = applicableModes(slot.info.layer);
+    const modes = slot.kind.modes;
     if (update.mode !== undefined) {
       if (!isRenderMode(update.mode) || !modes.includes(update.mode)) {
         throw new RenderModeError(`lens mode ${JSON.stringify(update.mode)} does not apply to layer `

@@ -4,7 +4,7 @@
  */
 import OpenSeadragon from 'openseadragon';
 import { RelightDrawer } from '../drawer/relight-drawer';
-import { LanternaError } from '../iiif/errors';
+import { LanternaError } from '../errors';
 
 /** Create the OpenSeadragon viewer in `element`; `osd` overrides the defaults. */
 export function createOsdViewer(element: HTMLElement, osd?: Partial<OpenSeadragon.Options>): OpenSeadragon.Viewer {

@@ -6,7 +6,7 @@ import type OpenSeadragon from 'openseadragon';
 import type { InfoCache } from '../iiif/load';
 import type { ManifestLayer } from '../iiif/manifest';
 import { OverlayController, overlayState, type OverlayState } from '../overlay/overlay-controller';
-import { createHypertext, type HypertextWidget } from '../ui/hypertext';
+import { createHypertext, type HypertextWidget } from '../panel/hypertext';
 
 /** Options of {@link OverlayWiring}. */
 export interface OverlayWiringOptions {

@@ -1,5 +1,5 @@
 import { describe, expect, it } from 'vitest';
-import { scissorBox } from '../../plugin/src/drawer/lens-target';
+import { scissorBox } from '../../../plugin/src/drawer/lens-target';
 
 describe('scissorBox', () => {
   it('bounds the circle with a 1 px margin, in whole device pixels', () => {

@@ -1,17 +1,18 @@
 /**
- * The public shape of a Lanterna viewer: the options of `createViewer`, the running viewer's API
- * and its errors.
+ * The public shape of a Lanterna viewer: the options of `createViewer` (`viewer/viewer.ts`), the
+ * running viewer's API and its errors. Types and error classes only, so that the panel can be typed
+ * against the viewer without importing it.
  */
 import type OpenSeadragon from 'openseadragon';
-import type { PixelData } from '../drawer/relight-drawer';
-import { LanternaError } from '../iiif/errors';
+import type { PixelData } from '../drawer/read-pixels';
+import { LanternaError } from '../errors';
 import type { LoadedLayer } from '../iiif/load';
 import type { ManifestInfo } from '../iiif/manifest';
 import type { LayerType } from '../iiif/relight-service';
 import type { LensState, LensUpdate } from '../lens/lens-state';
 import type { Light } from '../math/light';
-import type { OverlayState } from '../overlay/overlay-controller';
-import type { RenderMode } from '../render/modes';
+import type { OverlayState } from '../overlay/overlay-state';
+import type { RenderMode, ShadingClass } from '../render/modes';
 import type { RenderParams } from '../render/params';
 import type { DragMode } from '../ui/interaction';
 
@@ -44,6 +45,8 @@ export interface LayerInfo {
   readonly id: string;
   readonly label: string;
   readonly layerType: LayerType;
+  /** Its column in the contract's mode table (`docs/rendering.md`); `flat`: the light changes nothing. */
+  readonly shading: ShadingClass;
   /** The render modes that apply to it, in menu order. */
   readonly modes: RenderMode[];
 }

@@ -1,5 +1,5 @@
 import { describe, expect, it } from 'vitest';
-import { modelMatrix, multiply, rotationAbout, transformPoint, viewMatrix } from '../../plugin/src/math/matrix';
+import { modelMatrix, multiply, rotationAbout, transformPoint, viewMatrix } from '../../../plugin/src/math/matrix';
 
 describe('tile matrices', () => {
   const bounds = { x: 0.25, y: 0.1, width: 0.5, height: 0.375 };

@@ -1,6 +1,6 @@
 import { describe, expect, it } from 'vitest';
-import { isLensAction, routeGesture, routeWheel, type GestureAction } from '../../plugin/src/ui/gesture-routing';
-import type { LensHit } from '../../plugin/src/math/lens';
+import { isLensAction, routeGesture, routeWheel, type GestureAction } from '../../../plugin/src/ui/gesture-routing';
+import type { LensHit } from '../../../plugin/src/math/lens';
 
 type Row = [contacts: number, hit: LensHit | null, button: number, shift: boolean, mode: 'light' | 'pan',
   expected: GestureAction];

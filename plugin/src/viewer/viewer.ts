@@ -3,30 +3,27 @@
  * one TiledImage per layer (inactive layers at opacity 0, so they load nothing), the active layer's
  * annotation overlay for the current level, and the lens.
  *
- * The parts live in `viewer/`: the API types, the OpenSeadragon options, the layer slots, the lens
- * and the overlays; this module wires them to the light, the render mode and the parameters.
+ * The parts live next to it in `viewer/` (the OpenSeadragon options, the layer slots, the lens and the
+ * overlays; the API types are in `api/`); this module wires them to the light, the render mode and
+ * the parameters.
  */
 import type OpenSeadragon from 'openseadragon';
-import { LanternaError } from './iiif/errors';
-import { fetchJson, type InfoCache } from './iiif/load';
-import { parseManifest, type ManifestInfo } from './iiif/manifest';
-import { initialLens } from './lens/lens-state';
-import { lightFromPointer, lightFromProjection } from './math/light';
-import { overlayState } from './overlay/overlay-controller';
-import { applicableModes, DEFAULT_RENDER_MODE, isRenderMode, shadingClass, type RenderMode } from './render/modes';
-import { DEFAULT_RENDER_PARAMS, mergeParams, type RenderParams } from './render/params';
-import { attachInteraction, type DragMode } from './ui/interaction';
-import { createLightWidget, type LightWidget } from './ui/light-widget';
-import { RenderModeError, type CreateViewerOptions, type LanternaViewer } from './viewer/api';
-import { whenFullyLoaded } from './viewer/fully-loaded';
-import { LayerSlots, levelOf, type LayerSlot } from './viewer/layer-slots';
-import { LensWiring } from './viewer/lens-wiring';
-import { createOsdViewer, relightDrawerOf } from './viewer/osd-viewer';
-import { OverlayWiring } from './viewer/overlay-wiring';
-
-export {
-  RenderModeError, UnknownLayerError, type CreateViewerOptions, type LanternaViewer, type LayerInfo,
-} from './viewer/api';
+import { RenderModeError, type CreateViewerOptions, type LanternaViewer } from '../api/viewer-api';
+import { LanternaError } from '../errors';
+import { fetchJson, type InfoCache } from '../iiif/load';
+import { parseManifest, type ManifestInfo } from '../iiif/manifest';
+import { initialLens } from '../lens/lens-state';
+import { lightFromProjection, type Light } from '../math/light';
+import { overlayState } from '../overlay/overlay-controller';
+import { DEFAULT_RENDER_MODE, isRenderMode, type RenderMode } from '../render/modes';
+import { DEFAULT_RENDER_PARAMS, mergeParams, type RenderParams } from '../render/params';
+import { attachInteraction, type DragMode } from '../ui/interaction';
+import { createLightWidget, type LightWidget } from '../ui/light-widget';
+import { whenFullyLoaded } from './fully-loaded';
+import { LayerSlots, levelOf, type LayerSlot } from './layer-slots';
+import { LensWiring } from './lens-wiring';
+import { createOsdViewer, relightDrawerOf } from './osd-viewer';
+import { OverlayWiring } from './overlay-wiring';
 
 /**
  * Create a viewer for a Lanterna manifest.
@@ -45,6 +42,8 @@ export function createViewer(options: CreateViewerOptions): LanternaViewer {
     throw new LanternaError(`viewer element #${options.element as string} not found`);
   }
   let dragMode: DragMode = options.mode ?? 'light';
+  // Raw (lu, lv) numbers become a Light (clamped) here and in setLight only; the widget and the
+  // pointer hand over Lights already made by lightFromPointer or nudgeLight.
   let light = lightFromProjection(options.light?.[0] ?? 0, options.light?.[1] ?? 0);
   let renderMode: RenderMode = DEFAULT_RENDER_MODE;
   let params: RenderParams = DEFAULT_RENDER_PARAMS;
@@ -73,11 +72,12 @@ export function createViewer(options: CreateViewerOptions): LanternaViewer {
 
   const widget: LightWidget | null = options.lightIndicator === false ? null : createLightWidget(viewer.element, {
     getLight: () => light,
-    setLight: (l) => { api.setLight(l.lu, l.lv); },
+    setLight: (l) => { applyLight(l); },
   });
 
-  const applyLight = (): void => {
-    drawer().setLight(light.lu, light.lv);
+  const applyLight = (next: Light): void => {
+    light = next;
+    drawer().setLight(light);
     widget?.update(light);
     changed();
   };
@@ -102,10 +102,7 @@ export function createViewer(options: CreateViewerOptions): LanternaViewer {
 
   const detach = attachInteraction(viewer, {
     getMode: () => dragMode,
-    moveLight: (x, y, w, h) => {
-      light = lightFromPointer(x, y, w, h);
-      applyLight();
-    },
+    setLight: (l) => { applyLight(l); },
     claimed: () => lens.claimed(),
   });
 
@@ -141,15 +138,15 @@ export function createViewer(options: CreateViewerOptions): LanternaViewer {
     slots.hideOthers(slot);
     item.setOpacity(1);
     active = slot;
-    if (!applicableModes(slot.info.layer).includes(renderMode)) {
+    if (!slot.kind.modes.includes(renderMode)) {
       renderMode = DEFAULT_RENDER_MODE;
       drawer().setRenderMode(renderMode);
     }
     drawer().prepare(slot.info.layer, renderMode);
-    widget?.setLit(shadingClass(slot.info.layer) !== 'flat');
+    widget?.setLit(slot.kind.lit);
     overlays.invalidate();
     sync();
-    await lens.followActive(slot.info.layer);
+    await lens.followActive(slot);
     changed();
   };
 
@@ -158,7 +155,7 @@ export function createViewer(options: CreateViewerOptions): LanternaViewer {
     manifest = parsed;
     slots.add(parsed.layers);
     await activate(slots.require(options.layer ?? parsed.layers[0]?.id ?? ''));
-    applyLight();
+    applyLight(light);
   })();
   // Avoid an unhandled rejection if the caller never awaits `ready`.
   ready.catch(() => undefined);
@@ -176,8 +173,7 @@ export function createViewer(options: CreateViewerOptions): LanternaViewer {
     get manifest() { return manifest; },
     get layer() { return active?.loaded ?? null; },
     setLight(lu: number, lv: number) {
-      light = lightFromProjection(lu, lv);
-      applyLight();
+      applyLight(lightFromProjection(lu, lv));
     },
     getLight: () => light,
     setMode(m: DragMode) { dragMode = m; },
@@ -194,7 +190,7 @@ export function createViewer(options: CreateViewerOptions): LanternaViewer {
       if (!active) {
         throw new RenderModeError('no layer is open yet (await ready)');
       }
-      const modes = applicableModes(active.info.layer);
+      const modes = active.kind.modes;
       if (!modes.includes(mode)) {
         throw new RenderModeError(`mode ${mode} does not apply to layer ${active.info.id} `
           + `(${active.info.layer.layerType}); it supports ${modes.join(', ')}`);

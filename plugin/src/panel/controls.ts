@@ -2,17 +2,16 @@
  * The viewer page's control panel: layer switcher, mode menu (the active layer's modes only) and
  * sliders for the parameters the mode uses. Plain DOM, driven by the viewer's public API.
  */
-import { LanternaError } from '../iiif/errors';
-import { MODE_LABELS, shadingClass, type RenderMode } from '../render/modes';
+import type { LanternaViewer } from '../api/viewer-api';
+import { LanternaError } from '../errors';
+import type { RenderMode } from '../render/modes';
 import { PARAM_SPECS, relevantParams, type RenderParamName } from '../render/params';
-import type { LanternaViewer } from '../viewer';
-import { labelled } from './dom';
+import {
+  labelled, layerOptions, modeOptions, mountSection, namedSelect, slider, type PanelSection, type Slider,
+} from './panel-dom';
 
 /** The panel's DOM. */
-export interface Controls {
-  readonly element: HTMLElement;
-  destroy(): void;
-}
+export type Controls = PanelSection;
 
 /**
  * Build the panel into `parent` for a ready viewer.
@@ -25,27 +24,20 @@ export function createControls(lanterna: LanternaViewer, parent: HTMLElement,
   panel.className = 'lanterna-controls';
   panel.addEventListener('submit', (e) => { e.preventDefault(); });
 
-  const layerSelect = document.createElement('select');
-  layerSelect.name = 'layer';
-  const modeSelect = document.createElement('select');
-  modeSelect.name = 'mode';
+  const layers = lanterna.getLayers();
+  const layerSelect = namedSelect('layer', layerOptions(layers));
+  const modeSelect = namedSelect('mode');
   const sliders = document.createElement('div');
   sliders.className = 'lanterna-sliders';
   const reset = document.createElement('button');
   reset.type = 'button';
   reset.textContent = 'Reset';
   reset.title = 'Reset the parameters to their defaults';
-
-  const layers = lanterna.getLayers();
-  for (const l of layers) {
-    layerSelect.add(new Option(`${l.label} (${l.layerType})`, l.id));
-  }
   const layerRow = labelled('Layer', layerSelect);
   layerRow.hidden = layers.length < 2;
   panel.append(layerRow, labelled('Mode', modeSelect), sliders, reset);
-  parent.appendChild(panel);
 
-  const inputs = new Map<RenderParamName, { input: HTMLInputElement; value: HTMLOutputElement }>();
+  const inputs = new Map<RenderParamName, Slider>();
   let shownKey = '';
 
   const buildSliders = (names: RenderParamName[]): void => {
@@ -53,34 +45,28 @@ export function createControls(lanterna: LanternaViewer, parent: HTMLElement,
     inputs.clear();
     for (const name of names) {
       const spec = PARAM_SPECS[name];
-      const input = document.createElement('input');
-      Object.assign(input, { type: 'range', name, min: String(spec.min), max: String(spec.max), step: String(spec.step) });
-      const value = document.createElement('output');
-      input.addEventListener('input', () => { lanterna.setRenderParams({ [name]: Number(input.value) }); });
-      input.addEventListener('dblclick', () => { lanterna.setRenderParams({ [name]: spec.default }); });
-      const row = labelled(spec.label, input);
-      row.append(value);
-      row.title = `${name}: ${spec.min}–${spec.max}, default ${spec.default} (double-click to reset)`;
-      sliders.appendChild(row);
-      inputs.set(name, { input, value });
+      const s = slider(spec.label, { name, min: spec.min, max: spec.max, step: spec.step });
+      s.input.addEventListener('input', () => { lanterna.setRenderParams({ [name]: Number(s.input.value) }); });
+      s.input.addEventListener('dblclick', () => { lanterna.setRenderParams({ [name]: spec.default }); });
+      s.row.title = `${name}: ${spec.min}–${spec.max}, default ${spec.default} (double-click to reset)`;
+      sliders.appendChild(s.row);
+      inputs.set(name, s);
     }
   };
 
   const refresh = (): void => {
     const activeId = lanterna.getActiveLayer();
     const active = layers.find((l) => l.id === activeId);
-    const info = lanterna.manifest?.layers.find((l) => l.id === activeId);
-    if (!active || !info) {
+    if (!active) {
       return;
     }
     layerSelect.value = activeId;
     const mode = lanterna.getRenderMode();
-    const names = relevantParams(mode, shadingClass(info.layer));
     const key = `${activeId}|${mode}`;
     if (key !== shownKey) {
       shownKey = key;
-      modeSelect.replaceChildren(...active.modes.map((m) => new Option(MODE_LABELS[m], m)));
-      buildSliders(names);
+      modeSelect.replaceChildren(...modeOptions(active.modes));
+      buildSliders(relevantParams(mode, active.shading));
     }
     modeSelect.value = mode;
     const params = lanterna.getRenderParams();
@@ -101,13 +87,5 @@ export function createControls(lanterna: LanternaViewer, parent: HTMLElement,
     }
   });
   reset.addEventListener('click', () => { lanterna.resetRenderParams(); });
-  const unsubscribe = lanterna.onChange(refresh);
-  refresh();
-  return {
-    element: panel,
-    destroy: () => {
-      unsubscribe();
-      panel.remove();
-    },
-  };
+  return mountSection(lanterna, parent, panel, refresh);
 }

@@ -1,5 +1,5 @@
 import { describe, expect, it } from 'vitest';
-import { lightFromPointer, lightFromProjection, nudgeLight, OVERHEAD_LIGHT } from '../../plugin/src/math/light';
+import { lightFromPointer, lightFromProjection, nudgeLight, OVERHEAD_LIGHT } from '../../../plugin/src/math/light';
 
 describe('lightFromPointer', () => {
   it('maps the element centre to the overhead light', () => {

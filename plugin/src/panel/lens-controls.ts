@@ -2,16 +2,13 @@
  * The panel's lens section: the layer and mode drawn in the lens, its opacity and where the
  * annotations show. Plain DOM, driven by the viewer's public API.
  */
+import type { LanternaViewer } from '../api/viewer-api';
 import { ANNOTATION_DISPLAYS, type AnnotationDisplay } from '../lens/lens-state';
-import { MODE_LABELS, type RenderMode } from '../render/modes';
-import type { LanternaViewer } from '../viewer';
-import { labelled } from './dom';
+import type { RenderMode } from '../render/modes';
+import { labelled, layerOptions, modeOptions, mountSection, namedSelect, slider, type PanelSection } from './panel-dom';
 
 /** The section's DOM. */
-export interface LensControls {
-  readonly element: HTMLElement;
-  destroy(): void;
-}
+export type LensControls = PanelSection;
 
 const DISPLAY_LABELS: Readonly<Record<AnnotationDisplay, string>> = {
   everywhere: 'Everywhere', inside: 'Inside the lens', outside: 'Outside the lens',
@@ -25,27 +22,13 @@ export function createLensControls(lanterna: LanternaViewer, parent: HTMLElement
   Object.assign(section.style, { border: '0', borderTop: '1px solid #3a3a3a', padding: '8px 0 0', margin: '8px 0 0' });
   const legend = document.createElement('legend');
   legend.textContent = 'Lens';
-  const layerSelect = document.createElement('select');
-  layerSelect.name = 'lens-layer';
-  const modeSelect = document.createElement('select');
-  modeSelect.name = 'lens-mode';
-  const opacity = document.createElement('input');
-  Object.assign(opacity, { type: 'range', name: 'lens-opacity', min: '0', max: '1', step: '0.01' });
-  const opacityValue = document.createElement('output');
-  const display = document.createElement('select');
-  display.name = 'lens-annotations';
-  for (const d of ANNOTATION_DISPLAYS) {
-    display.add(new Option(DISPLAY_LABELS[d], d));
-  }
   const layers = lanterna.getLayers();
-  for (const l of layers) {
-    layerSelect.add(new Option(`${l.label} (${l.layerType})`, l.id));
-  }
-  const opacityRow = labelled('Opacity', opacity);
-  opacityRow.append(opacityValue);
+  const layerSelect = namedSelect('lens-layer', layerOptions(layers));
+  const modeSelect = namedSelect('lens-mode');
+  const opacity = slider('Opacity', { name: 'lens-opacity', min: 0, max: 1, step: 0.01 });
+  const display = namedSelect('lens-annotations', ANNOTATION_DISPLAYS.map((d) => new Option(DISPLAY_LABELS[d], d)));
   const annotationsRow = labelled('Annotations', display);
-  section.append(legend, labelled('Layer', layerSelect), labelled('Mode', modeSelect), opacityRow, annotationsRow);
-  parent.appendChild(section);
+  section.append(legend, labelled('Layer', layerSelect), labelled('Mode', modeSelect), opacity.row, annotationsRow);
 
   let shownLayer = '';
   const refresh = (): void => {
@@ -54,12 +37,11 @@ export function createLensControls(lanterna: LanternaViewer, parent: HTMLElement
     layerSelect.value = lens.layer;
     if (lens.layer !== shownLayer) {
       shownLayer = lens.layer;
-      const modes = layers.find((l) => l.id === lens.layer)?.modes ?? [];
-      modeSelect.replaceChildren(...modes.map((m) => new Option(MODE_LABELS[m], m)));
+      modeSelect.replaceChildren(...modeOptions(layers.find((l) => l.id === lens.layer)?.modes ?? []));
     }
     modeSelect.value = lens.mode;
-    opacity.value = String(lens.opacity);
-    opacityValue.textContent = lens.opacity.toFixed(2);
+    opacity.input.value = String(lens.opacity);
+    opacity.value.textContent = lens.opacity.toFixed(2);
     display.value = lens.annotations;
     annotationsRow.hidden = !lanterna.manifest?.layers.some((l) => l.overlays.length > 0);
   };
@@ -72,15 +54,7 @@ export function createLensControls(lanterna: LanternaViewer, parent: HTMLElement
   };
   layerSelect.addEventListener('change', () => { set({ layer: layerSelect.value }); });
   modeSelect.addEventListener('change', () => { set({ mode: modeSelect.value as RenderMode }); });
-  opacity.addEventListener('input', () => { set({ opacity: Number(opacity.value) }); });
+  opacity.input.addEventListener('input', () => { set({ opacity: Number(opacity.input.value) }); });
   display.addEventListener('change', () => { set({ annotations: display.value as AnnotationDisplay }); });
-  const unsubscribe = lanterna.onChange(refresh);
-  refresh();
-  return {
-    element: section,
-    destroy: () => {
-      unsubscribe();
-      section.remove();
-    },
-  };
+  return mountSection(lanterna, parent, section, refresh);
 }

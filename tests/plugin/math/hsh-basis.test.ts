@@ -1,5 +1,5 @@
 import { describe, expect, it } from 'vitest';
-import { HSH_MAX_THETA, HSH_NORMAL_LIGHTS, hshNormalInverse, hshNormalWeights, hshWeights } from '../../plugin/src/math/hsh-basis';
+import { HSH_MAX_THETA, HSH_NORMAL_LIGHTS, hshNormalInverse, hshNormalWeights, hshWeights } from '../../../plugin/src/math/hsh-basis';
 
 const { sqrt, PI } = Math;
 

@@ -1,9 +1,8 @@
 import { describe, expect, it } from 'vitest';
-import { OverlayError } from '../../plugin/src/iiif/errors';
-import { parseManifest } from '../../plugin/src/iiif/manifest';
-import { overlayAt, parseOverlays } from '../../plugin/src/iiif/overlays';
-import { overlayItemWidth, overlayState } from '../../plugin/src/overlay/overlay-state';
-import { manifestWithAnnotations, overlayAnnotation, overlayPage } from './fixtures';
+import { OverlayError } from '../../../plugin/src/iiif/errors';
+import { parseManifest } from '../../../plugin/src/iiif/manifest';
+import { overlayAt, parseOverlays } from '../../../plugin/src/iiif/overlays';
+import { manifestWithAnnotations, overlayAnnotation, overlayPage } from '../fixtures';
 
 const BASE = 'http://127.0.0.1:8000/datasets/ushabti';
 
@@ -78,28 +77,5 @@ describe('overlay levels from canvas.annotations', () => {
     expect(() => parseOverlays(canvasOf([overlayPage('ptm', [noSize])]), ['ptm'])).toThrow(/positive width/);
     const twice = [overlayAnnotation('ptm', 1, 'a', 'b'), overlayAnnotation('ptm', 1, 'c', 'd')];
     expect(() => parseManifest(manifestWithAnnotations([overlayPage('ptm', twice)]))).toThrow(/two overlays for level 1/);
-  });
-});
-
-describe('overlay state and placement', () => {
-  const layer = parseManifest(manifestWithAnnotations([overlayPage('ptm', [
-    overlayAnnotation('ptm', 1, 'Figure', '<p onclick="x()">The <i>figure</i>.</p><script>x()</script>'),
-  ])])).layers[0];
-
-  it('reports the level, its texts (long text sanitised) or that there is none', () => {
-    expect(overlayState(layer ?? null, 1)).toEqual({
-      level: 1, available: true, short: 'Figure', long: '<p>The <i>figure</i>.</p>',
-    });
-    expect(overlayState(layer ?? null, 0)).toEqual({ level: 0, available: false, short: '', long: '' });
-    expect(overlayState(null, 3)).toEqual({ level: 3, available: false, short: '', long: '' });
-  });
-
-  it('places level pixel i over full-resolution pixels [i·2^L, (i+1)·2^L)', () => {
-    const level = (l: number, w: number): Parameters<typeof overlayItemWidth>[0] => ({
-      layer: 'ptm', level: l, short: '', long: '', serviceId: 'x', width: w, height: 1,
-    });
-    expect(overlayItemWidth(level(0, 900), 900)).toBe(1);
-    expect(overlayItemWidth(level(2, 225), 900)).toBe(1);
-    expect(overlayItemWidth(level(3, 113), 900)).toBeCloseTo(904 / 900, 12); // ceil(900/8) = 113 overhangs
   });
 });

@@ -1,10 +1,10 @@
 /**
  * What the viewer tells the drawer about the lens and the overlays (implemented by `RelightDrawer`).
  */
-import type { RelightLayer } from './iiif/relight-service';
-import type { AnnotationDisplay } from './lens/lens-state';
-import type { RenderMode } from './render/modes';
-import type { RenderParams } from './render/params';
+import type { RelightLayer } from '../iiif/relight-service';
+import type { AnnotationDisplay } from '../lens/lens-state';
+import type { RenderMode } from '../render/modes';
+import type { RenderParams } from '../render/params';
 
 /** The lens as the drawer needs it: a circle in CSS px of the viewer element and how to draw inside. */
 export interface DrawerLens {

@@ -1,5 +1,5 @@
 import { describe, expect, it } from 'vitest';
-import { currentLevel, imagePxPerDevicePx, maxLevelOf } from '../../plugin/src/math/levels';
+import { currentLevel, imagePxPerDevicePx, maxLevelOf } from '../../../plugin/src/math/levels';
 
 describe('currentLevel (docs/annotations.md: clamp(floor(log2(s) + 1e-6), 0, maxLevel))', () => {
   it.each([

@@ -2,7 +2,7 @@
  * The hypertext widget: the short text of the overlay level shown now, expandable to its long text
  * (sanitised HTML), or "No annotation at this level".
  */
-import type { OverlayState } from '../overlay/overlay-controller';
+import type { OverlayState } from '../overlay/overlay-state';
 
 /** The widget's DOM and its update function. */
 export interface HypertextWidget {

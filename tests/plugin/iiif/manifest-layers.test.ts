@@ -1,8 +1,8 @@
 import { describe, expect, it } from 'vitest';
-import { ManifestError, MissingRelightServiceError, RelightServiceError } from '../../plugin/src/iiif/errors';
-import { idFromUrl, parseManifest } from '../../plugin/src/iiif/manifest';
-import { parseRelightService, svbrdfMapIndices } from '../../plugin/src/iiif/relight-service';
-import { manifest, relightBlock } from './fixtures';
+import { ManifestError, MissingRelightServiceError, RelightServiceError } from '../../../plugin/src/iiif/errors';
+import { idFromUrl, parseManifest } from '../../../plugin/src/iiif/manifest';
+import { parseRelightService, svbrdfMapIndices } from '../../../plugin/src/iiif/relight-service';
+import { manifest, relightBlock } from '../fixtures';
 
 const BASE = 'http://127.0.0.1:8000/datasets/obj';
 

@@ -1,5 +1,5 @@
 import { describe, expect, it } from 'vitest';
-import { escapeHtml, isSafeUrl, sanitizeHtml } from '../../plugin/src/ui/sanitize-html';
+import { escapeHtml, isSafeUrl, sanitizeHtml } from '../../../plugin/src/ui/sanitize-html';
 
 describe('sanitizeHtml', () => {
   it.each([

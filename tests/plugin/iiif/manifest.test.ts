@@ -1,11 +1,11 @@
 import { describe, expect, it } from 'vitest';
 import {
   ManifestError, MismatchedPlanesError, MissingRelightServiceError, RelightServiceError, ImageInfoError,
-} from '../../plugin/src/iiif/errors';
-import { commonGeometry, imageGeometry } from '../../plugin/src/iiif/image-info';
-import { labelText, parseManifest } from '../../plugin/src/iiif/manifest';
-import { expectedChannels, parseRelightService } from '../../plugin/src/iiif/relight-service';
-import { info, manifest, relightBlock } from './fixtures';
+} from '../../../plugin/src/iiif/errors';
+import { commonGeometry, imageGeometry } from '../../../plugin/src/iiif/image-info';
+import { labelText, parseManifest } from '../../../plugin/src/iiif/manifest';
+import { expectedChannels, parseRelightService } from '../../../plugin/src/iiif/relight-service';
+import { info, manifest, relightBlock } from '../fixtures';
 
 describe('parseManifest', () => {
   it('finds the relight layer of the painting image', () => {

@@ -1,51 +1,9 @@
 import { describe, expect, it } from 'vitest';
-import { parseRelightService, type RelightLayer } from '../../plugin/src/iiif/relight-service';
-import {
-  applicableModes, isRenderMode, isUnsharpMode, MODE_LABELS, RENDER_MODES, shadingClass,
-} from '../../plugin/src/render/modes';
-import { DEFAULT_RENDER_PARAMS, mergeParams, PARAM_SPECS, relevantParams } from '../../plugin/src/render/params';
-import { boxPasses, boxPassReference, F3, F5, modeFilter } from '../../plugin/src/render/filter-plan';
-import { relightBlock } from './fixtures';
+import { isRenderMode, isUnsharpMode, MODE_LABELS, RENDER_MODES } from '../../../plugin/src/render/modes';
+import { DEFAULT_RENDER_PARAMS, mergeParams, PARAM_SPECS, relevantParams } from '../../../plugin/src/render/params';
+import { boxPasses, boxPassReference, F3, F5, modeFilter } from '../../../plugin/src/render/filter-plan';
 
-function layer(layerType: string, extra: Record<string, unknown>, groups: string[][]): RelightLayer {
-  return parseRelightService({
-    type: 'LanternaRelight', profile: 'urn:lanterna:relight:1', layerType, width: 4, height: 4, ...extra,
-    planes: groups.map((channels, i) => ({
-      service: { id: `http://h/i${i}` }, channels, scale: channels.map(() => 1), bias: channels.map(() => 0),
-    })),
-  });
-}
-
-const lrgb = parseRelightService(relightBlock());
-const rgb = layer('ptm', { colorspace: 'rgb', basis: ['lu2', 'lv2', 'lulv', 'lu', 'lv', '1'] },
-  ['R', 'G', 'B'].flatMap((c) => [[`${c}0`, `${c}1`, `${c}2`], [`${c}3`, `${c}4`, `${c}5`]]));
-const hsh = layer('hsh', { terms: 4 }, [0, 1, 2, 3].map((k) => [`R${k}`, `G${k}`, `B${k}`]));
-const shape = layer('svbrdf', {}, [['NX', 'NY', 'NZ']]);
-const material = layer('svbrdf', {}, [['KD_R', 'KD_G', 'KD_B'], ['GLOSS']]);
-const image = layer('image', {}, [['R', 'G', 'B']]);
-const mono = layer('image', {}, [['Y']]);
-
-describe('mode applicability (docs/rendering.md table)', () => {
-  it('classifies layers', () => {
-    expect([lrgb, rgb, hsh, shape, material, image, mono].map(shadingClass))
-      .toEqual(['ptm-lrgb', 'ptm-rgb', 'hsh', 'svbrdf', 'flat', 'flat', 'flat']);
-  });
-
-  it('gives PTM LRGB every mode', () => {
-    expect(applicableModes(lrgb)).toEqual([...RENDER_MODES]);
-  });
-
-  it('follows the table for the other classes', () => {
-    expect(applicableModes(rgb)).toEqual(RENDER_MODES.filter((m) => m !== 'unsharpLuminance'));
-    expect(applicableModes(hsh)).toEqual(['color', 'normals', 'albedo', 'diffuse', 'achromatic', 'specular',
-      'unsharpNormals', 'unsharpCoefficients', 'unsharpImage']);
-    expect(applicableModes(shape)).toEqual(['color', 'normals', 'albedo', 'diffuse', 'achromatic', 'specular',
-      'unsharpNormals', 'unsharpImage']);
-    for (const flat of [material, image, mono]) {
-      expect(applicableModes(flat)).toEqual(['color', 'albedo', 'achromatic', 'unsharpImage']);
-    }
-  });
-
+describe('render modes', () => {
   it('knows mode names, labels and the unsharp family', () => {
     expect(isRenderMode('specular')).toBe(true);
     expect(isRenderMode('Specular')).toBe(false);

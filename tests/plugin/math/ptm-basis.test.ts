@@ -1,5 +1,5 @@
 import { describe, expect, it } from 'vitest';
-import { BASES, PTM_BASIS_TERMS, ptmWeights, relightPtmPixel } from '../../plugin/src/math/ptm-basis';
+import { BASES, PTM_BASIS_TERMS, ptmWeights, relightPtmPixel } from '../../../plugin/src/math/ptm-basis';
 
 describe('ptmWeights', () => {
   it('is [lu², lv², lu·lv, lu, lv, 1]', () => {

@@ -1,17 +1,24 @@
 import { describe, expect, it } from 'vitest';
 import {
-  MAX_PLANES, U_BIAS, U_GLOSS_LIMITS, U_HALF, U_LIGHT, U_MAPS, U_PARAM, U_SCALE, U_SRGB_INPUT, U_WEIGHTS,
-} from '../../plugin/src/gl/uniforms';
-import { DEFAULT_RENDER_PARAMS } from '../../plugin/src/render/params';
-import { parseRelightService } from '../../plugin/src/iiif/relight-service';
-import { layerUniforms } from '../../plugin/src/layers/layer-uniforms';
-import { relightBlock } from './fixtures';
+  MAX_PLANES, U_BIAS, U_GLOSS_LIMITS, U_HALF, U_HSH_NORMAL_WEIGHTS, U_LIGHT, U_PARAM, U_SCALE, U_WEIGHTS,
+} from '../../../plugin/src/gl/uniforms';
+import { DEFAULT_RENDER_PARAMS, type RenderParams } from '../../../plugin/src/render/params';
+import { parseRelightService, type RelightLayer } from '../../../plugin/src/iiif/relight-service';
+import { layerUniforms } from '../../../plugin/src/layers/layer-uniforms';
+import { resolveLayer } from '../../../plugin/src/layers/resolved-layer';
+import { lightFromProjection } from '../../../plugin/src/math/light';
+import { relightBlock } from '../fixtures';
+
+/** The uniforms of `layer` under the light (lu, lv), resolved and clamped as the drawer does. */
+function uniformsOf(layer: RelightLayer, lu: number, lv: number, params?: RenderParams) {
+  return layerUniforms(resolveLayer(layer), lightFromProjection(lu, lv), params);
+}
 
 describe('layerUniforms', () => {
   const layer = parseRelightService(relightBlock());
 
   it('packs scale and bias per plane group, padded to MAX_PLANES', () => {
-    const u = layerUniforms(layer, 0, 0);
+    const u = uniformsOf(layer, 0, 0);
     expect(u[U_SCALE]).toHaveLength(MAX_PLANES * 3);
     expect(Array.from(u[U_SCALE].slice(0, 9))).toEqual([2, 2, 2, 2, 2, 0, 1, 1, 1]);
     expect(u[U_BIAS][0]).toBeCloseTo(0.627, 6);
@@ -21,7 +28,7 @@ describe('layerUniforms', () => {
   });
 
   it('passes the PTM weights for the light', () => {
-    const u = layerUniforms(layer, 0.5, -0.5);
+    const u = uniformsOf(layer, 0.5, -0.5);
     expect(Array.from(u[U_WEIGHTS])).toEqual([0.25, 0.25, -0.25, 0.5, -0.5, 1, ...(new Array(10).fill(0) as number[])]);
   });
 
@@ -31,7 +38,7 @@ describe('layerUniforms', () => {
       width: 4, height: 4,
       planes: [{ service: { id: 'http://h/i' }, channels: ['R', 'G', 'B'], scale: [1, 1, 1], bias: [0, 0, 0] }],
     });
-    expect(Array.from(layerUniforms(image, 0.5, 0.5)[U_WEIGHTS])).toEqual(new Array(16).fill(0));
+    expect(Array.from(uniformsOf(image, 0.5, 0.5)[U_WEIGHTS])).toEqual(new Array(16).fill(0));
   });
 
   it('repeats a single-band group\'s scale and bias, and indexes svbrdf maps', () => {
@@ -43,16 +50,17 @@ describe('layerUniforms', () => {
       planes: [plane('k', ['KD_R', 'KD_G', 'KD_B'], [1, 1, 1], [0, 0, 0]), plane('g', ['GLOSS'], [0.5], [0.25]),
         plane('n', ['NX', 'NY', 'NZ'], [2, 2, 2], [0.5, 0.5, 0.5])],
     });
-    const u = layerUniforms(sv, 0, 0);
+    const u = uniformsOf(sv, 0, 0);
     expect(Array.from(u[U_SCALE].slice(3, 6))).toEqual([0.5, 0.5, 0.5]);
     expect(Array.from(u[U_BIAS].slice(3, 6))).toEqual([0.25, 0.25, 0.25]);
-    expect(Array.from(u[U_MAPS])).toEqual([2, 0, -1, 1]);
-    expect(u[U_SRGB_INPUT]).toBe(1);
-    expect(Array.from(u[U_GLOSS_LIMITS])).toEqual([Math.fround(0.05), Math.fround(0.3)]);
+    expect(resolveLayer(sv).program.defines).toEqual({
+      SV_NORMALS: 2, SV_KD: 0, SV_KS: -1, SV_GLOSS: 1, SV_SRGB: 1, SV_DISPLAY: 0,
+    });
+    expect(Array.from(u[U_GLOSS_LIMITS] as Float32Array)).toEqual([Math.fround(0.05), Math.fround(0.3)]);
   });
 
   it('passes the light, the half vector and the parameters', () => {
-    const u = layerUniforms(layer, 0.6, 0, { ...DEFAULT_RENDER_PARAMS, gamma: 2.2 });
+    const u = uniformsOf(layer, 0.6, 0, { ...DEFAULT_RENDER_PARAMS, gamma: 2.2 });
     expect(Array.from(u[U_LIGHT]).map((x) => +x.toFixed(6))).toEqual([0.6, 0, 0.8]);
     const h = Array.from(u[U_HALF]);
     expect(Math.hypot(...h)).toBeCloseTo(1, 6);
@@ -67,8 +75,10 @@ describe('layerUniforms', () => {
     const hsh = parseRelightService({
       type: 'LanternaRelight', profile: 'urn:lanterna:relight:1', layerType: 'hsh', terms: 9, width: 4, height: 4, planes,
     });
-    const w = layerUniforms(hsh, 0, 0)[U_WEIGHTS];
+    const u = uniformsOf(hsh, 0, 0);
+    const w = u[U_WEIGHTS];
     expect(w[0]).toBeCloseTo(1 / Math.sqrt(2 * Math.PI), 6);
     expect(w[9]).toBe(0);
+    expect(u[U_HSH_NORMAL_WEIGHTS]).toHaveLength(48);
   });
 });

@@ -1,5 +1,5 @@
 import { describe, expect, it } from 'vitest';
-import { bundleKey } from '../../plugin/src/tiles/tile-key';
+import { bundleKey } from '../../../plugin/src/tiles/tile-key';
 
 describe('bundleKey', () => {
   it('includes every plane URL in order', () => {
