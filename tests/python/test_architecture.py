@@ -72,10 +72,7 @@ def modules(roots: Mapping[str, Path]) -> dict[str, Path]:
             parts = [*name.split("."), *rel]
             if parts[-1] == "__init__":
                 parts.pop()
-            dotted = ".".join(parts)
-            if not any(dotted != other and dotted.startswith(other + ".") and
-                       roots[other] == path.parent and False for other in roots):
-                out.setdefault(dotted, path)
+            out.setdefault(".".join(parts), path)
     return out
 
 

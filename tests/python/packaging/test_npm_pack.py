@@ -7,22 +7,21 @@ a DOM as soon as it is imported, so Node alone cannot load the package).
 
 from __future__ import annotations
 
-import functools
 import json
 import shutil
 import subprocess
 import tarfile
-import threading
 from collections.abc import Iterator
-from http.server import SimpleHTTPRequestHandler, ThreadingHTTPServer
 from pathlib import Path
 from typing import Any
 
 import pytest
 
-REPO = Path(__file__).resolve().parents[3]
+from tests.python.fixtures.browser import CHROMIUM
+from tests.python.fixtures.paths import REPO
+from tests.python.fixtures.servers import StaticServer
+
 PLUGIN = REPO / "plugin"
-CHROMIUM = Path("/usr/bin/chromium")
 TSC = REPO / "node_modules/typescript/bin/tsc"
 VITE = REPO / "node_modules/vite/bin/vite.js"
 PLAYWRIGHT = REPO / "node_modules/playwright-core/index.mjs"
@@ -191,20 +190,8 @@ def served(project: Path) -> Iterator[str]:
     (project / "main.js").write_text(MAIN_JS)
     run(["node", str(VITE), "build", ".", "--outDir", "dist", "--emptyOutDir", "--minify", "false",
          "--base", "./", "--logLevel", "warn"], project)
-    handler = functools.partial(_QuietHandler, directory=str(project / "dist"))
-    server = ThreadingHTTPServer(("127.0.0.1", 0), handler)
-    thread = threading.Thread(target=server.serve_forever, daemon=True)
-    thread.start()
-    try:
-        yield f"http://127.0.0.1:{server.server_address[1]}/index.html"
-    finally:
-        server.shutdown()
-        server.server_close()
-
-
-class _QuietHandler(SimpleHTTPRequestHandler):
-    def log_message(self, format: str, *args: Any) -> None:
-        pass
+    with StaticServer(project / "dist") as server:
+        yield f"{server.url}/index.html"
 
 
 def test_package_runs_in_a_browser(project: Path, served: str) -> None:
