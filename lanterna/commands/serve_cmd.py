@@ -13,15 +13,35 @@ from lanterna.errors import LanternaInputError
 
 from .common import SubParsers, serve_args
 
+SERVE_EXAMPLES = """examples:
+  lanterna serve datasets/                     every dataset in datasets/ at http://127.0.0.1:8000/
+  lanterna serve datasets/ --port 8080          another port
+  lanterna serve datasets/ --host 0.0.0.0 --workers 4
+      gunicorn with 4 worker processes, for several users on the network (docs/deploy.md)
+  lanterna serve datasets/ --max-size 4096     cap the output of the IIIF image server at /iiif/3/
+
+Without --workers the server is Werkzeug's (one process, a thread per connection): right for one
+person on this machine, not for several users or a public address.
+"""
+DEMO_EXAMPLES = """examples:
+  lanterna demo                        build datasets/demo (once), serve it at http://127.0.0.1:8000/
+  lanterna demo --no-serve             only build it
+  lanterna demo --force --port 8080    rebuild it, and serve it on another port
+"""
+
 
 def register(sub: SubParsers) -> None:
-    srv = sub.add_parser("serve", help="serve a folder of datasets and the viewer")
+    srv = sub.add_parser("serve", help="serve a folder of datasets and the viewer",
+                         epilog=SERVE_EXAMPLES,
+                         formatter_class=argparse.RawDescriptionHelpFormatter)
     srv.add_argument("root", type=Path, help="folder holding datasets")
     serve_args(srv)
     _worker_args(srv)
     srv.set_defaults(func=run_serve)
 
-    demo = sub.add_parser("demo", help="make the demo dataset (if missing) and serve it")
+    demo = sub.add_parser("demo", help="make the demo dataset (if missing) and serve it",
+                          epilog=DEMO_EXAMPLES,
+                          formatter_class=argparse.RawDescriptionHelpFormatter)
     demo.add_argument("--root", type=Path, default=Path("datasets"),
                       help="data root (default ./datasets)")
     demo.add_argument("--no-serve", action="store_true", help="only build the dataset")
