@@ -8,6 +8,7 @@ from pathlib import Path
 from lanterna.errors import LanternaInputError
 
 from .common import SubParsers, check_tile_size, dataset_args
+from .summary import print_written
 
 IMPORT_EXAMPLES = """examples:
   lanterna import ushabti.ptm -o datasets/ushabti     a PTM (RGB, LRGB, JPEG_LRGB, JPEG_RGB)
@@ -56,5 +57,5 @@ def run(args: argparse.Namespace) -> int:
     out = import_sources(args.sources, args.output, name=args.name, label=args.label,
                          bands=bands, fusions=fusions, base_url=args.base_url,
                          tile_size=args.tile_size, force=args.force, tiff=args.tiff)
-    print(f"wrote {out}")
+    print_written(out)
     return 0

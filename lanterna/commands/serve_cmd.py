@@ -12,6 +12,7 @@ from pathlib import Path
 from lanterna.errors import LanternaInputError
 
 from .common import SubParsers, serve_args
+from .summary import print_written
 
 SERVE_EXAMPLES = """examples:
   lanterna serve datasets/                     every dataset in datasets/ at http://127.0.0.1:8000/
@@ -117,7 +118,7 @@ def run_demo(args: argparse.Namespace) -> int:
         print(f"building the demo dataset in {out} …", flush=True)
         build_demo(out, force=True)
     if args.no_serve:
-        print(f"demo dataset at {out}")
+        print_written(out)
         return 0
     return run_serve(argparse.Namespace(root=args.root, host=args.host, port=args.port,
                                         workers=args.workers, threads=args.threads))
