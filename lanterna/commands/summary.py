@@ -42,9 +42,10 @@ def print_written(dataset: Path, *, details: bool = True) -> None:
     from lanterna.tiler.dataset.writer import read_description
 
     head, *rest = summary(read_description(dataset))
-    print(f"wrote {dataset}: {head}")
     if not details:
+        print(f"wrote {dataset}: {head.rstrip(':')}")
         return
+    print(f"wrote {dataset}: {head}")
     for line in rest:
         print(line)
     print(f"next: lanterna serve {shlex.quote(str(dataset.parent))}   "

@@ -9,7 +9,7 @@ from typing import Any
 import pytest
 
 from lanterna.cli import main
-from lanterna.commands.summary import summary
+from lanterna.commands.summary import print_written, summary
 from tests.python.conftest import random_ptm
 from tests.python.fixtures.ptm_writer import write_ptm
 
@@ -68,3 +68,14 @@ def test_import_prints_the_summary_and_the_next_command(
     assert lines[2].startswith("  4 pyramidal TIFFs in tiff/")
     assert lines[3].startswith(f"next: lanterna serve '{tmp_path / 'my datasets'}' ")
     assert len(lines) == 4
+
+
+def test_the_short_form_is_the_headline_alone(tmp_path: Path,
+                                             capsys: pytest.CaptureFixture[str]) -> None:
+    src = tmp_path / "small.ptm"
+    write_ptm(src, random_ptm(64, 64), "PTM_FORMAT_LRGB")
+    assert main(["import", str(src), "-o", str(tmp_path / "small")]) == 0
+    capsys.readouterr()
+    print_written(tmp_path / "small", details=False)
+    assert capsys.readouterr().out == (f'wrote {tmp_path / "small"}: dataset small "small", '
+                                       "64×64, 1 layer\n")
