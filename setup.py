@@ -5,9 +5,9 @@ Every package below them is found here, so a new sub-package needs no entry anyw
 ``manifests/schema`` (data only) is found as a namespace package and carries its files.
 
 A wheel also carries the built viewer page (``plugin/dist/viewer``, written by ``npm run build``)
-as ``lanterna/server/viewer``; building a wheel without it fails with a one-line message. An
-editable install (``make install``) does not copy it: the server then uses the checkout's
-``plugin/dist/viewer``.
+as ``lanterna/server/viewer``, and an sdist as ``plugin/dist/viewer`` for the wheel built from it;
+building either without it fails with a one-line message. An editable install (``make install``)
+does not copy it: the server then uses the checkout's ``plugin/dist/viewer``.
 """
 
 from __future__ import annotations
@@ -18,6 +18,7 @@ from pathlib import Path
 
 from setuptools import find_namespace_packages, setup
 from setuptools.command.build_py import build_py
+from setuptools.command.sdist import sdist
 from setuptools.errors import FileError
 from setuptools.warnings import InformationOnly
 
@@ -46,6 +47,15 @@ def packages() -> list[str]:
     return found
 
 
+def copy_viewer(target: Path) -> None:
+    """Copy the built viewer to ``target``, or fail in one line if it is not built."""
+    if not (VIEWER / "index.html").is_file():
+        raise FileError(f"{VIEWER} is not built: run `make build` (npm ci && npm run build) "
+                        "before building a wheel or an sdist")
+    # Source maps stay out (2.5 MB): the checkout has them for debugging.
+    shutil.copytree(VIEWER, target, ignore=shutil.ignore_patterns("*.map"))
+
+
 class BuildPyWithViewer(build_py):
     """``build_py`` from a clean build folder, adding the built viewer (not when editable)."""
 
@@ -53,15 +63,19 @@ class BuildPyWithViewer(build_py):
         if self.editable_mode:
             super().run()
             return
-        if not (VIEWER / "index.html").is_file():
-            raise FileError(f"{VIEWER} is not built: run `make build` (npm ci && npm run build) "
-                            "before building the wheel")
         # build/lib outlives builds: a module deleted or renamed since would ship again.
         shutil.rmtree(Path(self.build_lib, "lanterna"), ignore_errors=True)
         super().run()
-        # Source maps stay out of the wheel (2.5 MB): the checkout has them for debugging.
-        shutil.copytree(VIEWER, Path(self.build_lib, PACKAGED_VIEWER),
-                        ignore=shutil.ignore_patterns("*.map"))
+        copy_viewer(Path(self.build_lib, PACKAGED_VIEWER))
 
 
-setup(packages=packages(), package_dir=FOLDERS, cmdclass={"build_py": BuildPyWithViewer})
+class SdistWithViewer(sdist):
+    """``sdist`` carrying the built viewer too, so that a wheel built from it has one."""
+
+    def make_release_tree(self, base_dir: str, files: list[str]) -> None:
+        super().make_release_tree(base_dir, files)
+        copy_viewer(Path(base_dir, VIEWER))
+
+
+setup(packages=packages(), package_dir=FOLDERS,
+      cmdclass={"build_py": BuildPyWithViewer, "sdist": SdistWithViewer})
