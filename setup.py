@@ -47,12 +47,15 @@ def packages() -> list[str]:
     return found
 
 
-def copy_viewer(target: Path) -> None:
-    """Copy the built viewer to ``target``, or fail in one line if it is not built."""
+def require_viewer() -> None:
+    """Fail in one line if the viewer is not built."""
     if not (VIEWER / "index.html").is_file():
         raise FileError(f"{VIEWER} is not built: run `make build` (npm ci && npm run build) "
                         "before building a wheel or an sdist")
-    # Source maps stay out (2.5 MB): the checkout has them for debugging.
+
+
+def copy_viewer(target: Path) -> None:
+    """Copy the built viewer to ``target``; source maps stay out (2.5 MB, for debugging)."""
     shutil.copytree(VIEWER, target, ignore=shutil.ignore_patterns("*.map"))
 
 
@@ -63,6 +66,7 @@ class BuildPyWithViewer(build_py):
         if self.editable_mode:
             super().run()
             return
+        require_viewer()
         # build/lib outlives builds: a module deleted or renamed since would ship again.
         shutil.rmtree(Path(self.build_lib, "lanterna"), ignore_errors=True)
         super().run()
@@ -73,6 +77,7 @@ class SdistWithViewer(sdist):
     """``sdist`` carrying the built viewer too, so that a wheel built from it has one."""
 
     def make_release_tree(self, base_dir: str, files: list[str]) -> None:
+        require_viewer()
         super().make_release_tree(base_dir, files)
         copy_viewer(Path(base_dir, VIEWER))
 
