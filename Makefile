@@ -8,7 +8,7 @@ PORT   ?= 8000
 CHROMIUM := /usr/bin/chromium
 PLUGIN_SOURCES := $(shell find plugin/src plugin/index.html plugin/*.ts plugin/*.json -type f 2>/dev/null)
 
-.PHONY: demo test install build lint typecheck typecheck-tree test-unit test-python browser-deps serve clean screenshot
+.PHONY: demo test install build wheel lint typecheck typecheck-tree test-unit test-python browser-deps serve clean screenshot
 
 demo: install build ## make the demo dataset, serve it and print the URL
 	$(VENV)/bin/lanterna demo --root datasets --port $(PORT)
@@ -17,7 +17,7 @@ test: install build browser-deps lint typecheck test-unit test-python ## run eve
 
 install: $(VENV)/.installed node_modules/.installed
 
-$(VENV)/.installed: pyproject.toml
+$(VENV)/.installed: pyproject.toml setup.py
 	test -x $(PY) || $(PYTHON) -m venv $(VENV)
 	$(PY) -m pip install --quiet --upgrade pip
 	$(PY) -m pip install --quiet -e '.[dev]'
@@ -32,6 +32,9 @@ build: plugin/dist/.built
 plugin/dist/.built: node_modules/.installed $(PLUGIN_SOURCES)
 	npm run build
 	touch $@
+
+wheel: install build ## dist/lanterna-VERSION-py3-none-any.whl, with the built viewer inside
+	$(PY) -m pip wheel --quiet --no-deps --no-build-isolation -w dist .
 
 browser-deps:
 	@test -x $(CHROMIUM) || { \
@@ -63,4 +66,4 @@ screenshot: install build ## retake docs/screenshot.png from the demo dataset
 	$(PY) tools/screenshot.py --root datasets --out docs/screenshot.png
 
 clean:
-	rm -rf plugin/dist datasets tests/browser/out
+	rm -rf plugin/dist datasets tests/browser/out build dist

@@ -22,23 +22,33 @@ from werkzeug.wrappers import Response as BaseResponse
 from lanterna.tiler.iiif.spec import IMAGE_CONTEXT, PRESENTATION_CONTEXT
 
 from . import image_api
-from .errors import register_error_handlers
+from .errors import plain_error, register_error_handlers
 from .safe_path import contained_dir, contained_file, raw_path_is_safe
 
+#: The viewer page a wheel carries (setup.py copies ``plugin/dist/viewer`` there).
+PACKAGED_VIEWER = Path(__file__).resolve().parent / "viewer"
+#: The viewer page of a checkout (``npm run build``), for editable installs.
 REPO_VIEWER = Path(__file__).resolve().parent.parent / "plugin" / "dist" / "viewer"
+#: How to build the viewer when it is missing.
+BUILD_VIEWER = "run `make build` in the Lanterna checkout"
 _MEDIA = {".png": "image/png", ".jpg": "image/jpeg", ".jpeg": "image/jpeg", ".json": None}
+
+
+def default_viewer() -> Path:
+    """Return the built viewer: the packaged one if present, else the checkout's (may be absent)."""
+    return PACKAGED_VIEWER if (PACKAGED_VIEWER / "index.html").is_file() else REPO_VIEWER
 
 
 def create_app(config: dict[str, Any] | None = None) -> Flask:
     """Create the app.
 
     Config keys: ``DATA_ROOT`` (folder of datasets, required), ``VIEWER_DIR`` (the built viewer
-    page, default ``plugin/dist/viewer`` of this checkout), and the image server's ``IIIF_*``
+    page, default :func:`default_viewer`), and the image server's ``IIIF_*``
     limits (:data:`lanterna.server.image_api.DEFAULTS`, docs/serving.md).
     """
     app = Flask(__name__)
     app.url_map.merge_slashes = False  # "//x" is a bad path (404), not a redirect to "/x"
-    app.config["VIEWER_DIR"] = str(REPO_VIEWER)
+    app.config["VIEWER_DIR"] = str(default_viewer())
     app.config.update(config or {})
     if "DATA_ROOT" not in app.config:
         raise ValueError("create_app needs DATA_ROOT")
@@ -68,7 +78,10 @@ def create_app(config: dict[str, Any] | None = None) -> Flask:
     @app.get("/viewer/")
     @app.get("/viewer/<path:path>")
     def viewer(path: str = "index.html") -> Response:
-        return send_from_directory(app.config["VIEWER_DIR"], path)
+        folder = Path(app.config["VIEWER_DIR"])
+        if not (folder / "index.html").is_file():
+            return plain_error(404, f"the viewer is not built ({BUILD_VIEWER})")
+        return send_from_directory(folder, path)
 
     @app.get("/datasets/<path:path>")
     def datasets(path: str) -> Response | BaseResponse:

@@ -15,13 +15,14 @@ Settings (see :func:`gunicorn_settings`): ``gthread`` workers, each with a pool 
 worker keeps serving while one thread waits on disk or a slow client and HTTP keep-alive
 connections (what browsers and OpenSeadragon use) cost no worker; the app is loaded once before
 forking (``preload_app``), so a bad data root fails at start; tile files go out with
-``sendfile``; no access log (one line per tile is noise and costs time); gunicorn's control socket
-is off (no files under ``$HOME``).
+``sendfile``; no access log unless asked (one line per tile is noise and costs time); gunicorn's
+control socket is off (no files under ``$HOME``).
 """
 
 from __future__ import annotations
 
 import os
+import socket
 from pathlib import Path
 from typing import Any
 
@@ -87,12 +88,20 @@ class _Gunicorn(BaseApplication):  # type: ignore[misc]  # gunicorn ships no typ
         return self._app
 
 
-def run_gunicorn(root: Path, host: str, port: int, workers: int,
-                 threads: int = DEFAULT_THREADS, config: dict[str, object] | None = None) -> None:
-    """Serve the datasets in ``root`` with gunicorn until stopped (SIGINT or SIGTERM).
+def run_gunicorn(root: Path, listener: socket.socket, workers: int,
+                 threads: int = DEFAULT_THREADS, config: dict[str, object] | None = None, *,
+                 access_log: bool = False) -> None:
+    """Serve the datasets in ``root`` with gunicorn on ``listener`` until stopped (SIGINT, SIGTERM).
 
-    ``config`` adds app settings (e.g. the ``IIIF_*`` limits).  Does not return normally:
-    gunicorn's arbiter exits the process when it stops.
+    ``listener`` is bound and listening already (:func:`lanterna.server.local.listen`); gunicorn
+    takes it over. ``config`` adds app settings (e.g. the ``IIIF_*`` limits); ``access_log``
+    logs every request to stdout. Does not return normally: gunicorn's arbiter exits the process
+    when it stops.
     """
     app = create_app({**(config or {}), "DATA_ROOT": root})
-    _Gunicorn(app, gunicorn_settings(host, port, workers, threads)).run()
+    host, port = listener.getsockname()[:2]
+    settings = gunicorn_settings(host, port, workers, threads)
+    settings["bind"] = [f"fd://{listener.detach()}"]  # bound already: gunicorn takes it over
+    if access_log:
+        settings["accesslog"] = "-"
+    _Gunicorn(app, settings).run()

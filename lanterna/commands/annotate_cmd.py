@@ -8,18 +8,24 @@ from pathlib import Path
 
 from .common import SubParsers
 
-ANNOTATE_EXAMPLES = """examples:
+_BUILD = """\
   lanterna annotate build datasets/obj --layer vis --patches patches/
       composite patches named L_X_Y_W_H_O_INFO.png (level, full-resolution rectangle, order,
       free text) into the overlay levels of layer vis
   lanterna annotate build datasets/obj --layer vis --gimp levels/ --texts texts.json
       one transparent PNG per level (level_2.png or 2.png); texts.json is
       {"2": {"short": "Cracks", "long": "<p>Cracks in the glaze …</p>"}}
+"""
+_LIST = """\
   lanterna annotate list datasets/obj                  levels, texts and patches per layer
-
+"""
+_NOTE = """
 The dataset is rewritten atomically: the previous overlay of the layer stays until the new one is
 complete. Rejected files are listed one per line; the valid ones are still built (exit status 1).
 """
+ANNOTATE_EXAMPLES = "examples:\n" + _BUILD + _LIST + _NOTE
+BUILD_EXAMPLES = "examples:\n" + _BUILD + _NOTE
+LIST_EXAMPLES = "examples:\n" + _LIST
 
 
 def register(sub: SubParsers) -> None:
@@ -28,7 +34,7 @@ def register(sub: SubParsers) -> None:
                          formatter_class=argparse.RawDescriptionHelpFormatter)
     ann_sub = ann.add_subparsers(required=True, metavar="ACTION")
     build = ann_sub.add_parser("build", help="build (or replace) the overlay of one layer",
-                               epilog=ANNOTATE_EXAMPLES,
+                               epilog=BUILD_EXAMPLES,
                                formatter_class=argparse.RawDescriptionHelpFormatter)
     build.add_argument("dataset", type=Path, metavar="DATASET", help="dataset folder")
     build.add_argument("--layer", required=True, metavar="ID", help="layer id")
@@ -41,7 +47,9 @@ def register(sub: SubParsers) -> None:
                        help='JSON {"L": {"short": text, "long": html}}; levels without an entry '
                             "keep their previous texts")
     build.set_defaults(func=run_build)
-    lst = ann_sub.add_parser("list", help="show overlay levels, texts and patch counts")
+    lst = ann_sub.add_parser("list", help="show overlay levels, texts and patch counts",
+                             epilog=LIST_EXAMPLES,
+                             formatter_class=argparse.RawDescriptionHelpFormatter)
     lst.add_argument("dataset", type=Path, metavar="DATASET", help="dataset folder")
     lst.set_defaults(func=run_list)
 

@@ -36,4 +36,16 @@ def check_tile_size(tile_size: int) -> None:
 def serve_args(p: argparse.ArgumentParser) -> None:
     """The options of every command that runs the server (serve, demo)."""
     p.add_argument("--host", default="127.0.0.1", help="interface to bind (default 127.0.0.1)")
-    p.add_argument("--port", type=int, default=8000, help="port (default 8000)")
+    p.add_argument("--port", type=_port, default=8000, help="port (default 8000; 0: any free one)")
+    p.add_argument("-v", "--verbose", action="store_true",
+                   help="log every request, one line each (errors are always logged)")
+
+
+def _port(text: str) -> int:
+    try:
+        port = int(text)
+    except ValueError:
+        port = -1
+    if not 0 <= port <= 65535:
+        raise argparse.ArgumentTypeError(f"not a port number (0-65535): {text!r}")
+    return port

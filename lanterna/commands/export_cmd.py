@@ -41,9 +41,9 @@ def run(args: argparse.Namespace) -> int:
 
     viewer = None
     if args.with_viewer:
-        from lanterna.server.app import REPO_VIEWER
+        from lanterna.server.app import default_viewer
 
-        viewer = REPO_VIEWER
+        viewer = default_viewer()
     report = export(args.source, args.output, args.base_url, force=args.force, viewer=viewer)
     for name, manifest in report.manifests.items():
         print(f"  {name}: {manifest}")

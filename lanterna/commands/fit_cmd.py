@@ -12,6 +12,7 @@ if TYPE_CHECKING:
     from lanterna.tiler.fit.run import ImageSet
 
 from .common import SubParsers, check_tile_size, dataset_args
+from .summary import print_written
 
 FIT_EXAMPLES = """examples:
   lanterna fit photos/ --lp photos/lights.lp --model ptm --model hsh --model normals -o datasets/obj
@@ -99,5 +100,5 @@ def run(args: argparse.Namespace) -> int:
              tiff=args.tiff, scratch=args.scratch, fit_space=args.fit_space,
              scheduler=args.scheduler, report=print,
              progress=None if args.quiet else Progress)
-    print(f"wrote {args.output}")
+    print_written(args.output)
     return 0

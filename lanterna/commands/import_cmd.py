@@ -8,11 +8,28 @@ from pathlib import Path
 from lanterna.errors import LanternaInputError
 
 from .common import SubParsers, check_tile_size, dataset_args
+from .summary import print_written
+
+IMPORT_EXAMPLES = """examples:
+  lanterna import ushabti.ptm -o datasets/ushabti     a PTM (RGB, LRGB, JPEG_LRGB, JPEG_RGB)
+  lanterna import vase.rti -o datasets/vase           an HSH .rti (4/9/16 terms)
+  lanterna import vis.ptm vis.rti uv.png -o datasets/obj
+      several co-registered sources, one layer each (the first is the default)
+  lanterna import object.json -o datasets/obj
+      a description file (shape + material maps, shared files) or a seed-paper scene
+  lanterna import --band IR=ir.tif --band R=r.tif --band G=g.tif --fusion IR,R,G -o datasets/ms
+      multispectral bands as grey layers, and a false-colour layer
+  lanterna import ushabti.ptm --tiff -o datasets/ushabti
+      also a pyramidal TIFF per image, for the IIIF image server at /iiif/3/
+
+Every source type and the description file: docs/importing.md.
+"""
 
 
-def register(sub: SubParsers, epilog: str) -> None:
+def register(sub: SubParsers) -> None:
     imp = sub.add_parser("import", help="import sources as the layers of one dataset",
-                         epilog=epilog, formatter_class=argparse.RawDescriptionHelpFormatter)
+                         epilog=IMPORT_EXAMPLES,
+                         formatter_class=argparse.RawDescriptionHelpFormatter)
     imp.add_argument("sources", type=Path, nargs="*", metavar="SOURCE",
                      help=".ptm, .rti, a Relight folder, an image, or a description .json; "
                           "several sources become several layers (the first is the default)")
@@ -40,5 +57,5 @@ def run(args: argparse.Namespace) -> int:
     out = import_sources(args.sources, args.output, name=args.name, label=args.label,
                          bands=bands, fusions=fusions, base_url=args.base_url,
                          tile_size=args.tile_size, force=args.force, tiff=args.tiff)
-    print(f"wrote {out}")
+    print_written(out)
     return 0

@@ -1,27 +1,55 @@
 """``lanterna serve`` and ``lanterna demo``: the local server (and the demo dataset).
 
-Without ``--workers`` the Flask development server runs (one process, a thread per request);
-with ``--workers N`` gunicorn runs N worker processes (``lanterna.server.wsgi``).
+The socket is bound first (:func:`lanterna.server.local.listen`): a busy port is one line on
+stderr before anything else is printed. Without ``--workers`` Werkzeug's threaded server runs in
+this process (:mod:`lanterna.server.local`), with ``--workers N`` gunicorn runs N worker
+processes (:mod:`lanterna.server.wsgi`); either logs requests only with ``--verbose``.
 """
 
 from __future__ import annotations
 
 import argparse
+import errno
+import ipaddress
+import socket
+import sys
 from pathlib import Path
 
 from lanterna.errors import LanternaInputError
 
 from .common import SubParsers, serve_args
+from .summary import print_written
+
+SERVE_EXAMPLES = """examples:
+  lanterna serve datasets/                     every dataset in datasets/ at http://127.0.0.1:8000/
+  lanterna serve datasets/ --port 8080 --verbose
+      another port, and one log line per request
+  lanterna serve datasets/ --host 0.0.0.0 --workers 4
+      gunicorn with 4 worker processes, for several users on the network (docs/deploy.md)
+  lanterna serve datasets/ --max-size 4096     cap the output of the IIIF image server at /iiif/3/
+
+Without --workers the server is Werkzeug's (one process, a thread per connection): right for one
+person on this machine, not for several users or a public address.
+"""
+DEMO_EXAMPLES = """examples:
+  lanterna demo                        build datasets/demo (once), serve it at http://127.0.0.1:8000/
+  lanterna demo --no-serve             only build it
+  lanterna demo --force --port 8080    rebuild it, and serve it on another port
+"""
 
 
 def register(sub: SubParsers) -> None:
-    srv = sub.add_parser("serve", help="serve a folder of datasets and the viewer")
+    srv = sub.add_parser("serve", help="serve a folder of datasets and the viewer",
+                         epilog=SERVE_EXAMPLES,
+                         formatter_class=argparse.RawDescriptionHelpFormatter)
     srv.add_argument("root", type=Path, help="folder holding datasets")
     serve_args(srv)
     _worker_args(srv)
     srv.set_defaults(func=run_serve)
 
-    demo = sub.add_parser("demo", help="make the demo dataset (if missing) and serve it")
+    demo = sub.add_parser("demo", help="make the demo dataset (if missing) and serve it",
+                          epilog=DEMO_EXAMPLES,
+                          formatter_class=argparse.RawDescriptionHelpFormatter)
     demo.add_argument("--root", type=Path, default=Path("datasets"),
                       help="data root (default ./datasets)")
     demo.add_argument("--no-serve", action="store_true", help="only build the dataset")
@@ -33,8 +61,8 @@ def register(sub: SubParsers) -> None:
 
 def _worker_args(p: argparse.ArgumentParser) -> None:
     p.add_argument("--workers", type=int, default=None, metavar="N",
-                   help="serve with gunicorn, N worker processes (default: the Flask "
-                        "development server)")
+                   help="serve with gunicorn, N worker processes (default: the built-in "
+                        "server, for this machine)")
     p.add_argument("--threads", type=int, default=None, metavar="T",
                    help="threads per gunicorn worker (default 8; needs --workers)")
     p.add_argument("--max-size", type=int, default=None, metavar="PX",
@@ -59,45 +87,133 @@ def _limits(args: argparse.Namespace) -> dict[str, object]:
 
 
 def run_serve(args: argparse.Namespace) -> int:
-    from lanterna.server.app import create_app
-
     root = args.root.resolve()
     if not root.is_dir():
         raise LanternaInputError(args.root, "not a folder")
-    workers: int | None = getattr(args, "workers", None)
-    threads: int | None = getattr(args, "threads", None)
-    if workers is not None and workers < 1:
-        raise LanternaInputError(None, "--workers must be at least 1")
-    if threads is not None and (workers is None or threads < 1):
-        raise LanternaInputError(None, "--threads needs --workers and must be at least 1")
+    _check_workers(args)
     limits = _limits(args)
-    url = f"http://{args.host}:{args.port}/"
-    for desc in sorted(root.glob("*/lanterna.json")):
-        manifest = f"{url}datasets/{desc.parent.name}/manifest.json"
-        print(f"  {desc.parent.name}: {url}viewer/?manifest={manifest}")
-    if workers is None:
-        print(f"Lanterna serving {root} at {url}  (Ctrl-C to stop)", flush=True)
-        create_app({**limits, "DATA_ROOT": root}).run(host=args.host, port=args.port,
-                                                      threaded=True)
-        return 0
-    from lanterna.server.wsgi import DEFAULT_THREADS, run_gunicorn
-
-    threads = threads or DEFAULT_THREADS
-    print(f"Lanterna serving {root} at {url} with gunicorn, {workers} workers × {threads} "
-          "threads  (Ctrl-C to stop)", flush=True)
-    run_gunicorn(root, args.host, args.port, workers, threads, limits)
-    return 0
+    listener = _listen(args, "serve")
+    if listener is None:
+        return 1
+    return _serve(args, "serve", listener, root, limits)
 
 
 def run_demo(args: argparse.Namespace) -> int:
     from lanterna.tiler.demo.dataset import build_demo
 
+    listener = None
+    if not args.no_serve:  # refuse a busy port before the build, not after
+        _check_workers(args)
+        limits = _limits(args)
+        listener = _listen(args, "demo")
+        if listener is None:
+            return 1
     out = args.root / "demo"
     if args.force or not (out / "lanterna.json").is_file():
         print(f"building the demo dataset in {out} …", flush=True)
         build_demo(out, force=True)
-    if args.no_serve:
-        print(f"demo dataset at {out}")
+        if listener is not None:
+            print_written(out, details=False)
+    if listener is None:
+        print_written(out)
         return 0
-    return run_serve(argparse.Namespace(root=args.root, host=args.host, port=args.port,
-                                        workers=args.workers, threads=args.threads))
+    return _serve(args, "demo", listener, args.root.resolve(), limits)
+
+
+def _check_workers(args: argparse.Namespace) -> None:
+    workers, threads = args.workers, args.threads
+    if workers is not None and workers < 1:
+        raise LanternaInputError(None, "--workers must be at least 1")
+    if threads is not None and (workers is None or threads < 1):
+        raise LanternaInputError(None, "--threads needs --workers and must be at least 1")
+
+
+def _listen(args: argparse.Namespace, command: str) -> socket.socket | None:
+    """Bind ``--host``/``--port``; on failure print one line and return None."""
+    from lanterna.server.local import listen
+
+    try:
+        return listen(args.host, args.port)
+    except OSError as err:
+        print(f"lanterna {command}: error: {_listen_problem(args.host, args.port, err)}",
+              file=sys.stderr)
+        return None
+
+
+def _listen_problem(host: str, port: int, err: OSError) -> str:
+    """Say in a few words why ``host:port`` cannot be listened on, and what to try."""
+    if isinstance(err, socket.gaierror):
+        return f"unknown host {host!r} (--host takes a name or an address of this machine)"
+    if err.errno == errno.EADDRINUSE:
+        return f"port {port} is in use ({_free_port_hint(host, port)})"
+    if err.errno == errno.EACCES:
+        return f"no permission to listen on port {port} ({_free_port_hint(host, 8000)})"
+    if err.errno == errno.EADDRNOTAVAIL:
+        return f"{host} is not an address of this machine (try --host 127.0.0.1)"
+    return f"cannot listen on {host}:{port}: {err.strerror or err}"
+
+
+def _free_port_hint(host: str, port: int) -> str:
+    from lanterna.server.local import listen
+
+    for candidate in range(port + 1, min(port + 20, 65535) + 1):
+        try:
+            listen(host, candidate).close()
+        except OSError:
+            continue
+        return f"try --port {candidate}"
+    return "try another --port, or --port 0 for any free one"
+
+
+def _serve(args: argparse.Namespace, command: str, listener: socket.socket, root: Path,
+           limits: dict[str, object]) -> int:
+    """Print the URLs, then serve on ``listener`` until Ctrl-C."""
+    from lanterna.server.app import BUILD_VIEWER, create_app, default_viewer
+    from lanterna.server.wsgi import DEFAULT_THREADS
+
+    threads = args.threads or DEFAULT_THREADS
+    _print_urls(args, listener.getsockname(), root, threads)
+    if not (default_viewer() / "index.html").is_file():
+        print(f"lanterna {command}: warning: the viewer is not built, /viewer/ answers 404 "
+              f"({BUILD_VIEWER})", file=sys.stderr)
+    if args.workers is None:
+        from lanterna.server.local import run_threaded
+
+        run_threaded(create_app({**limits, "DATA_ROOT": root}), listener,
+                     access_log=args.verbose)
+    else:
+        from lanterna.server.wsgi import run_gunicorn
+
+        run_gunicorn(root, listener, args.workers, threads, limits, access_log=args.verbose)
+    return 0
+
+
+def _print_urls(args: argparse.Namespace, address: tuple[str, int], root: Path,
+                threads: int) -> None:
+    """Print where the server listens, each dataset's viewer URL, and what the server is."""
+    host = f"[{args.host}]" if ":" in args.host else args.host
+    url = f"http://{host}:{address[1]}/"
+    workers = args.workers
+    engine = ("" if workers is None else
+              f" with gunicorn, {workers} worker{'s' if workers > 1 else ''} × {threads} threads")
+    print(f"Lanterna serving {root} at {url}{engine}  (Ctrl-C to stop)")
+    datasets = sorted(root.glob("*/lanterna.json"))
+    for desc in datasets:
+        manifest = f"{url}datasets/{desc.parent.name}/manifest.json"
+        print(f"  {desc.parent.name}: {url}viewer/?manifest={manifest}")
+    if not datasets:
+        print(f"  no datasets yet: lanterna import FILE -o {root / 'NAME'}")
+    if workers is None:
+        print(_local_note(address[0]))
+    sys.stdout.flush()
+
+
+def _local_note(address: str) -> str:
+    """One line on what the built-in server is for, given the address it listens on."""
+    try:
+        loopback = ipaddress.ip_address(address).is_loopback
+    except ValueError:
+        loopback = False
+    where = (f"Local server for this machine ({address}), for one user"
+             if loopback else f"Built-in server, reachable from other machines ({address})")
+    return f"{where}; for several users use --workers N (docs/deploy.md)."

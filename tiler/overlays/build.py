@@ -191,7 +191,11 @@ def scene_overlay(ds: DatasetWriter, layer_id: str, raw: Mapping[str, Any],
 
 def overlay_summary(dataset_dir: Path) -> list[dict[str, Any]]:
     """Return, per layer, its overlay levels with texts and its patch count (``annotate list``)."""
-    desc = read_description(Path(dataset_dir))
+    return overlay_rows(read_description(Path(dataset_dir)))
+
+
+def overlay_rows(desc: Mapping[str, Any]) -> list[dict[str, Any]]:
+    """:func:`overlay_summary` of a parsed ``lanterna.json``."""
     rows = []
     for layer in desc["layers"]:
         overlay = layer.get("overlay")
