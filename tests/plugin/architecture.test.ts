@@ -239,3 +239,39 @@ describe('plugin/src structure', () => {
     expect(users.filter((file) => partOf(file) !== 'drawer')).toEqual([]);
   });
 });
+
+/** Lines per `.ts` file, by folder, of `plugin/src/` and of these tests. */
+function linesByFolder(): Map<string, number[]> {
+  const folders = new Map<string, number[]>();
+  for (const root of [SRC, resolve(SRC, '../../tests/plugin')]) {
+    for (const path of sourceFiles(root)) {
+      const folder = relative(resolve(SRC, '../..'), dirname(path));
+      const lines = readFileSync(path, 'utf8').split('\n').length - 1;
+      folders.set(folder, [...(folders.get(folder) ?? []), lines]);
+    }
+  }
+  return folders;
+}
+
+function median(values: readonly number[]): number {
+  const sorted = [...values].sort((a, b) => a - b);
+  const mid = sorted.length >> 1;
+  return sorted.length % 2 ? (sorted[mid] ?? 0) : ((sorted[mid - 1] ?? 0) + (sorted[mid] ?? 0)) / 2;
+}
+
+describe('file sizes (one concept per file)', () => {
+  const folders = linesByFolder();
+
+  it('reads the source and test folders', () => {
+    expect(folders.size).toBeGreaterThan(15);
+    expect(median([3, 1, 2])).toBe(2);
+    expect(median([4, 1, 2, 3])).toBe(2.5);
+  });
+
+  it('keeps every file within 450 lines and every folder\'s median within 200', () => {
+    const tooLong = [...folders].flatMap(([folder, sizes]) => sizes.filter((n) => n > 450).map((n) => `${folder}: ${n}`));
+    expect(tooLong).toEqual([]);
+    const heavy = [...folders].filter(([, sizes]) => median(sizes) > 200).map(([folder, sizes]) => `${folder}: ${median(sizes)}`);
+    expect(heavy).toEqual([]);
+  });
+});
