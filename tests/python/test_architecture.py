@@ -25,12 +25,13 @@ ROOTS = {"lanterna": REPO / "lanterna", "lanterna.tiler": REPO / "tiler",
 
 E = "lanterna.errors"
 T = "lanterna.tiler"
-BASE = {E, f"{T}.fileio", f"{T}.progress"}
+BASE = {E, f"{T}.fileio", f"{T}.progress", f"{T}.documents"}
 #: unit → the units it may import (besides itself). A unit is the longest matching prefix.
 ALLOWED: dict[str, set[str]] = {
     E: set(),
     "lanterna": set(),  # the package's __init__
     f"{T}.fileio": {E},
+    f"{T}.documents": {E, f"{T}.fileio"},
     f"{T}.progress": set(),
     T: set(),  # lanterna/tiler/__init__.py
     f"{T}.formats": BASE,

@@ -22,7 +22,6 @@ PTM gets zero quadratic channels), HSH one group ``R{k}, G{k}, B{k}`` per term.
 
 from __future__ import annotations
 
-import json
 import math
 from pathlib import Path
 from typing import Any
@@ -32,6 +31,7 @@ import numpy.typing as npt
 import pyvips
 
 from lanterna.errors import LanternaInputError
+from lanterna.tiler.documents import read_document
 
 from .planes import PlaneGroup, PlaneLayer
 
@@ -65,7 +65,7 @@ def read_relight(folder: str | Path) -> PlaneLayer:
         raise LanternaInputError(src, "folder not found")
     if not info_path.is_file():
         raise LanternaInputError(src, "no info.json: not a Relight web-format folder")
-    info = _load_info(info_path)
+    info = read_document(info_path, "relight-info")
     rtype, colorspace, width, height, nplanes = _check_info(info, info_path)
     scale, bias = _quantisation(info, nplanes, info_path)
     ext = _plane_format(info, info_path)
@@ -93,18 +93,6 @@ def read_relight(folder: str | Path) -> PlaneLayer:
                 groups.append(_ptm_group(planes, [f"{name}{j}" for j in range(g, g + 3)], idx,
                                          scale, bias))
     return PlaneLayer("ptm", groups, colorspace, None, extra)
-
-
-def _load_info(path: Path) -> dict[str, Any]:
-    try:
-        info = json.loads(path.read_text(encoding="utf-8"))
-    except OSError as exc:
-        raise LanternaInputError(path, f"cannot read file ({exc.strerror})") from None
-    except (UnicodeDecodeError, json.JSONDecodeError) as exc:
-        raise LanternaInputError(path, f"not valid JSON ({exc})") from None
-    if not isinstance(info, dict):
-        raise LanternaInputError(path, "must hold a JSON object")
-    return info
 
 
 def _int_field(info: dict[str, Any], key: str, path: Path) -> int:

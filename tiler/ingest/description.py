@@ -12,80 +12,130 @@ Lanterna's own form (paths relative to the file; docs/importing.md)::
         "fusions": [["IR", "R", "G"]]}
      ]}
 
-The seed paper's scene description (``obj.shader`` / ``obj.maps``) is recognised too and converted
-by :mod:`.scene`.
+The document is checked against ``tiler/schemas/description.schema.json`` first (every problem a
+one-line error with its JSON path), then read into typed records (:class:`SourceEntry`,
+:class:`SvbrdfEntry`, :class:`BandsEntry`) that the layers are planned from. The seed paper's
+scene description (``obj.shader`` / ``obj.maps``) is recognised too and converted by :mod:`.scene`.
 """
 
 from __future__ import annotations
 
+from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
 from lanterna.errors import LanternaInputError
 from lanterna.tiler.dataset.plan import LayerPlan
-from lanterna.tiler.fileio import read_json
+from lanterna.tiler.documents import check_document, load_json
 
 from .overlay import attach_overlay
-from .scene import plan_scene
+from .paths import referenced
+from .scene import is_scene, plan_scene
 from .sources import plan_bands, plan_source, plan_svbrdf
 
-
-def is_scene(doc: dict[str, Any]) -> bool:
-    """Tell the seed paper's scene format (layers with ``obj``) from Lanterna's own."""
-    layers = doc.get("layers")
-    return isinstance(layers, list) and any(isinstance(x, dict) and "obj" in x for x in layers)
+#: Defaults of an svbrdf entry (docs/importing.md).
+GLOSS_LIMITS = (0.01, 0.5)
 
 
-def plan_description(path: Path) -> tuple[dict[str, Any], list[LayerPlan]]:
-    """Return the dataset fields (name, label, summary) and the layer plans of a description."""
+@dataclass(frozen=True)
+class SourceEntry:
+    """A layer read from one source file or folder."""
+
+    source: Path
+    id: str | None = None
+    label: str | None = None
+    overlay: Any = None
+
+
+@dataclass(frozen=True)
+class SvbrdfEntry:
+    """A shape + material layer from map files."""
+
+    id: str
+    maps: dict[str, Path]
+    label: str | None = None
+    gloss_limits: tuple[float, float] = GLOSS_LIMITS
+    input_colorspace: str = "linear"
+    normal_convention: str = "opengl"
+    overlay: Any = None
+
+
+@dataclass(frozen=True)
+class BandsEntry:
+    """Spectral bands (one grey layer each) and false-colour fusions of three of them."""
+
+    bands: dict[str, Path]
+    fusions: tuple[tuple[str, str, str], ...] = ()
+
+
+Entry = SourceEntry | SvbrdfEntry | BandsEntry
+
+
+def plan_description(path: Path, *, root: Path | None = None
+                     ) -> tuple[dict[str, Any], list[LayerPlan]]:
+    """Return the dataset fields (name, label, summary) and the layer plans of a description.
+
+    ``root``: every file the description names must be inside this folder (for descriptions that
+    do not come from the command line: :mod:`.paths`).
+    """
     path = Path(path)
-    doc = read_json(path)
+    doc = load_json(path)
     if is_scene(doc):
-        return plan_scene(doc, path)
-    layers = doc.get("layers")
-    if not isinstance(layers, list) or not layers:
-        raise LanternaInputError(path, "needs a non-empty \"layers\" list")
-    base = path.parent
+        return plan_scene(check_document(doc, "scene", path), path, root=root)
+    doc = check_document(doc, "description", path)
     plans: list[LayerPlan] = []
-    for i, entry in enumerate(layers):
-        if not isinstance(entry, dict):
-            raise LanternaInputError(path, f"layer {i} is not an object")
-        plans.extend(_plan_entry(entry, base, path, i))
-    fields = {k: doc[k] for k in ("name", "label", "summary") if isinstance(doc.get(k), str)}
+    for entry in read_entries(doc, path, root=root):
+        plans.extend(plan_entry(entry, path.parent))
+    fields: dict[str, Any] = {k: doc[k] for k in ("name", "label", "summary") if k in doc}
     return fields, plans
 
 
-def _plan_entry(entry: dict[str, Any], base: Path, path: Path, i: int) -> list[LayerPlan]:
-    kind = entry.get("type", "source")
-    lid = entry.get("id")
-    label = entry.get("label")
-    where = f"layer {lid or i}"
-    if kind == "source" or (kind in ("ptm", "hsh", "image") and "source" in entry):
-        if "source" not in entry:
-            raise LanternaInputError(path, f"{where}: needs \"source\"")
-        plan = plan_source(base / entry["source"], layer_id=lid, label=label)
-        if "overlay" in entry:
-            attach_overlay(plan, entry["overlay"], base)
-        return [plan]
-    if kind == "svbrdf":
-        maps = entry.get("maps")
-        if not isinstance(maps, dict) or not lid:
-            raise LanternaInputError(path, f"{where}: an svbrdf layer needs \"id\" and \"maps\"")
-        limits = entry.get("glossLimits", [0.01, 0.5])
-        if not (isinstance(limits, list) and len(limits) == 2):
-            raise LanternaInputError(path, f"{where}: glossLimits must be [min, max]")
-        plan = plan_svbrdf({k: base / v for k, v in maps.items()}, layer_id=lid, label=label,
-                           gloss_limits=(float(limits[0]), float(limits[1])),
-                           input_colorspace=str(entry.get("inputColorSpace", "linear")).lower(),
-                           normal_convention=str(entry.get("normalConvention", "opengl")))
-        if "overlay" in entry:
-            attach_overlay(plan, entry["overlay"], base)
-        return [plan]
-    if kind == "bands":
-        bands = entry.get("bands")
-        if not isinstance(bands, dict) or not bands:
-            raise LanternaInputError(path,
-                                     f"{where}: a bands entry needs \"bands\": {{name: file}}")
-        return plan_bands({k: base / v for k, v in bands.items()}, entry.get("fusions", []))
-    raise LanternaInputError(path, f"{where}: unknown layer type {kind!r} (expected a source, "
-                             "svbrdf or bands)")
+def read_entries(doc: dict[str, Any], path: Path, *, root: Path | None = None) -> list[Entry]:
+    """The typed layer entries of a description that passed its schema."""
+    base = path.parent
+
+    def file(name: str, where: str) -> Path:
+        return referenced(base, name, source=path, where=where, root=root)
+
+    entries: list[Entry] = []
+    for i, raw in enumerate(doc["layers"]):
+        at = f"layers[{i}]"
+        kind = raw.get("type", "source")
+        if kind == "svbrdf":
+            low, high = (float(v) for v in raw.get("glossLimits", GLOSS_LIMITS))
+            if low > high:
+                raise LanternaInputError(path, f"{at}.glossLimits: expected [min, max] with "
+                                         f"min <= max (got [{low}, {high}])")
+            entries.append(SvbrdfEntry(
+                raw["id"], {k: file(v, f"{at}.maps.{k}") for k, v in raw["maps"].items()},
+                raw.get("label"), (low, high), raw.get("inputColorSpace", "linear").lower(),
+                raw.get("normalConvention", "opengl"), raw.get("overlay")))
+        elif kind == "bands":
+            bands = {k: file(v, f"{at}.bands.{k}") for k, v in raw["bands"].items()}
+            fusions = tuple((a, b, c) for a, b, c in raw.get("fusions", []))
+            for j, triple in enumerate(fusions):
+                missing = [b for b in triple if b not in bands]
+                if missing:
+                    raise LanternaInputError(path, f"{at}.fusions[{j}]: unknown band(s) "
+                                             f"{', '.join(missing)} (have {', '.join(bands)})")
+            entries.append(BandsEntry(bands, fusions))
+        else:
+            entries.append(SourceEntry(file(raw["source"], f"{at}.source"), raw.get("id"),
+                                       raw.get("label"), raw.get("overlay")))
+    return entries
+
+
+def plan_entry(entry: Entry, base: Path) -> list[LayerPlan]:
+    """The layer plans of one entry (``base``: the folder overlay images are relative to)."""
+    if isinstance(entry, BandsEntry):
+        return plan_bands(entry.bands, entry.fusions)
+    if isinstance(entry, SvbrdfEntry):
+        plan = plan_svbrdf(entry.maps, layer_id=entry.id, label=entry.label,
+                           gloss_limits=entry.gloss_limits,
+                           input_colorspace=entry.input_colorspace,
+                           normal_convention=entry.normal_convention)
+    else:
+        plan = plan_source(entry.source, layer_id=entry.id, label=entry.label)
+    if entry.overlay is not None:
+        attach_overlay(plan, entry.overlay, base)
+    return [plan]

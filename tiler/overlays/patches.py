@@ -11,7 +11,7 @@ import numpy as np
 import numpy.typing as npt
 
 from lanterna.errors import LanternaInputError
-from lanterna.tiler.fileio import read_json
+from lanterna.tiler.documents import check_document, read_document
 
 from . import geometry as og
 from .composite import composite, fit_level_image, load_rgba
@@ -85,24 +85,14 @@ def _files(folder: Path) -> list[Path]:
 
 
 def read_texts(texts: Path | Mapping[Any, Any] | None) -> Texts:
-    """Read ``{"L": {"short": "…", "long": "<p>…</p>"}}`` (a JSON file or a mapping)."""
+    """Read ``{"L": {"short": "…", "long": "<p>…</p>"}}`` (a JSON file or a mapping), checked
+    against ``tiler/schemas/texts.schema.json``."""
     if texts is None:
         return {}
-    source: Path | None = None
     if isinstance(texts, (str, Path)):
-        source = Path(texts)
-        texts = read_json(source)
-    if not isinstance(texts, Mapping):
-        raise LanternaInputError(source, "texts must be an object {\"L\": {\"short\", \"long\"}}")
-    out: Texts = {}
-    for key, value in texts.items():
-        try:
-            level = int(key)
-        except (TypeError, ValueError):
-            level = -1
-        if level < 0 or not isinstance(value, Mapping) or not all(
-                isinstance(value.get(k, ""), str) for k in ("short", "long")):
-            raise LanternaInputError(source, f"texts entry {key!r}: expected a level number and "
-                                     "{\"short\": text, \"long\": html}")
-        out[level] = {"short": value.get("short", ""), "long": value.get("long", "")}
-    return out
+        doc = read_document(Path(texts), "texts")
+    else:
+        doc = check_document({str(k): v for k, v in texts.items()} if isinstance(texts, Mapping)
+                             else texts, "texts", None)
+    return {int(key): {"short": value.get("short", ""), "long": value.get("long", "")}
+            for key, value in doc.items()}

@@ -223,18 +223,20 @@ BASE = info_json("ptm", "rgb", 18, [1.0] * 18, [0.0] * 18)
 INFO_ERRORS: dict[str, tuple[dict[str, Any], str]] = {
     "unknown type": (_edit(BASE, type="xyz"), "unknown Relight type 'xyz'"),
     "rbf": (_edit(BASE, type="rbf"), "unsupported Relight type 'rbf'"),
-    "no type": (_edit(BASE, type=None), "unknown Relight type None"),
+    "no type": (_edit(BASE, type=None), 'info.json: needs "type"'),
     "unknown colorspace": (_edit(BASE, colorspace="cmyk"), "unknown colorspace 'cmyk'"),
     "mycc": (_edit(BASE, colorspace="mycc"), "unsupported colorspace 'mycc'"),
     "hsh lrgb": (_edit(BASE, type="hsh", colorspace="lrgb"), "hsh with colorspace lrgb"),
     "bad nplanes": (_edit(BASE, nplanes=12), "ptm rgb needs nplanes 9 or 18, got 12"),
     "hsh nplanes": (_edit(BASE, type="hsh", nplanes=18), "hsh rgb needs nplanes 12 or 27 or 48"),
-    "width text": (_edit(BASE, width="wide"), "'width' must be an integer"),
-    "zero height": (_edit(BASE, height=0), "image size must be positive"),
+    "width text": (_edit(BASE, width="wide"),
+                   "width: expected a positive integer (or its decimal text) (got 'wide')"),
+    "zero height": (_edit(BASE, height=0),
+                    "height: expected a positive integer (or its decimal text) (got 0)"),
     "short scale": (_edit(BASE, materials=[{"scale": [1.0] * 17, "bias": [0.0] * 18}]),
                     "materials[0].scale must list 18 numbers (one per plane), got 17 values"),
     "nan bias": (_edit(BASE, materials=[{"scale": [1.0] * 18, "bias": [0.0] * 17 + ["x"]}]),
-                 "materials[0].bias holds a non-numeric"),
+                 "materials[0].bias[17]: expected a number (got 'x')"),
     "no scale": (_edit(BASE, materials=None), "info.json.scale must list 18 numbers"),
     "two materials": (_edit(BASE, materials=[{}, {}]), "2 materials; only one is supported"),
     "format": (_edit(BASE, format="webp"), "unsupported plane format 'webp'"),
@@ -263,7 +265,7 @@ def test_missing_folder_info_and_invalid_json(tmp_path: Path) -> None:
     with pytest.raises(LanternaInputError, match="not valid JSON"):
         read_relight(tmp_path)
     (tmp_path / "info.json").write_text("[1, 2]")
-    with pytest.raises(LanternaInputError, match="must hold a JSON object"):
+    with pytest.raises(LanternaInputError, match="expected an info.json object"):
         read_relight(tmp_path)
 
 

@@ -121,10 +121,12 @@ def test_maps_of_different_sizes_are_refused(tmp_path: Path,
 
 
 @pytest.mark.parametrize(("layers", "problem"), [
-    ([], 'needs a non-empty "layers" list'),
-    ([{"id": "x", "type": "volumetric", "source": "a.ptm"}], "unknown layer type 'volumetric'"),
+    ([], "d.json: layers: expected a non-empty list of layers"),
+    ([{"id": "x", "type": "volumetric", "source": "a.ptm"}],
+     "d.json: layers[0].type: expected a layer type: source, ptm, hsh, image, svbrdf or bands "
+     "(got 'volumetric')"),
     ([{"id": "x", "type": "svbrdf", "maps": {"normals": "N.png", "albedo": "a.png"}}],
-     "unknown map(s) albedo"),
+     "d.json: layers[0].maps: key 'albedo': expected a map name"),
     ([{"id": "x", "source": "missing.ptm"}], "missing.ptm: no such file"),
 ])
 def test_bad_descriptions(tmp_path: Path, capsys: pytest.CaptureFixture[str], layers: list,

@@ -73,6 +73,7 @@ def test_scene_with_unknown_shader_type_is_refused(tmp_path: Path,
     path = _seed_scene(tmp_path, shader_type="BRDF_MAGIC")
     assert main(["import", str(path), "-o", str(tmp_path / "out" / "s")]) == 2
     err = capsys.readouterr().err.strip()
-    assert err.endswith("layer VIS: unknown shader type 'BRDF_MAGIC' (expected LRGB_PTM or SVBRDF)")
+    assert err.endswith("scene.json: layers[0].obj.shader.type: expected a shader type: LRGB_PTM "
+                        "or SVBRDF (got 'BRDF_MAGIC')")
     assert len(err.splitlines()) == 1
     assert not (tmp_path / "out").exists()

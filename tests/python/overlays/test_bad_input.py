@@ -108,7 +108,7 @@ def test_nothing_valid_leaves_the_dataset_unchanged(tmp_path: Path, dataset: Pat
 
 @pytest.mark.parametrize(("args", "message"), [
     (["--layer", "nope"], "no layer 'nope' (layers: vis, uv)"),
-    (["--layer", "vis", "--texts", "missing.json"], "missing.json: cannot read"),
+    (["--layer", "vis", "--texts", "missing.json"], "missing.json: file not found"),
 ])
 def test_argument_errors_are_one_line(tmp_path: Path, dataset: Path, args: list[str],
                                       message: str, capsys: pytest.CaptureFixture[str]) -> None:

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import re
 from pathlib import Path
 
 import numpy as np
@@ -93,6 +94,7 @@ def test_level_image_of_another_size_is_refused() -> None:
 def test_texts_accept_level_keys_and_refuse_others() -> None:
     assert read_texts({"2": {"short": "s"}, 0: {"long": "<p>l</p>"}}) == {
         2: {"short": "s", "long": ""}, 0: {"short": "", "long": "<p>l</p>"}}
-    for bad in ({"x": {"short": "s"}}, {"-1": {}}, {"1": "text"}, {"1": {"short": 3}}):
-        with pytest.raises(LanternaInputError, match="texts entry"):
+    for bad, where in (({"x": {"short": "s"}}, "key 'x'"), ({"-1": {}}, "key '-1'"),
+                       ({"1": "text"}, "1: expected an object"), ({"1": {"short": 3}}, "1.short")):
+        with pytest.raises(LanternaInputError, match=re.escape(where)):
             read_texts(bad)
