@@ -7,6 +7,7 @@ import sys
 
 from lanterna.commands import annotate_cmd, export_cmd, fit_cmd, import_cmd, serve_cmd
 from lanterna.errors import LanternaInputError
+from lanterna.tiler.limits import set_max_pixels
 
 OVERVIEW = """examples:
   lanterna demo                                     make the demo object and serve it
@@ -22,6 +23,7 @@ def main(argv: list[str] | None = None) -> int:
     parser = _parser()
     args = parser.parse_args(argv)
     try:
+        set_max_pixels(getattr(args, "max_pixels", None))
         status: int = args.func(args)
         return status
     except LanternaInputError as err:
@@ -29,6 +31,8 @@ def main(argv: list[str] | None = None) -> int:
         return 2
     except KeyboardInterrupt:
         return 130
+    finally:
+        set_max_pixels(None)
 
 
 def _parser() -> argparse.ArgumentParser:

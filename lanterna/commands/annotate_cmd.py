@@ -6,7 +6,7 @@ import argparse
 import sys
 from pathlib import Path
 
-from .common import SubParsers
+from .common import SubParsers, max_pixels_arg
 
 _BUILD = """\
   lanterna annotate build datasets/obj --layer vis --patches patches/
@@ -43,6 +43,7 @@ def register(sub: SubParsers) -> None:
                      help="folder of patches named L_X_Y_W_H_O_INFO.png (RGBA PNG)")
     src.add_argument("--gimp", type=Path, metavar="DIR",
                      help="folder of one transparent PNG per level: level_L.png or L.png")
+    max_pixels_arg(build)
     build.add_argument("--texts", type=Path, metavar="FILE",
                        help='JSON {"L": {"short": text, "long": html}}; levels without an entry '
                             "keep their previous texts")

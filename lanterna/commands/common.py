@@ -8,6 +8,7 @@ from typing import TypeAlias
 
 from lanterna.errors import LanternaInputError
 from lanterna.tiler.dataset.writer import DEFAULT_BASE_URL
+from lanterna.tiler.limits import DEFAULT_MAX_PIXELS, ENVIRONMENT
 
 #: What ``sub.add_parser`` is called on.
 SubParsers: TypeAlias = "argparse._SubParsersAction[argparse.ArgumentParser]"
@@ -25,6 +26,15 @@ def dataset_args(p: argparse.ArgumentParser, *, label_default: str) -> None:
     p.add_argument("--tiff", action="store_true",
                    help="also write a pyramidal TIFF per image (tiff/<image>.tif) for the IIIF "
                         "image server at /iiif/3/ (and IIPImage or Cantaloupe)")
+    max_pixels_arg(p)
+
+
+def max_pixels_arg(p: argparse.ArgumentParser) -> None:
+    """``--max-pixels``: the largest image any reader decodes (lanterna.tiler.limits)."""
+    p.add_argument("--max-pixels", type=int, default=None, metavar="N",
+                   help=f"refuse images over N pixels (default {DEFAULT_MAX_PIXELS:,}, "
+                        f"or ${ENVIRONMENT}); guards against corrupt headers and "
+                        "decompression bombs")
 
 
 def check_tile_size(tile_size: int) -> None:

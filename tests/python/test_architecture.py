@@ -25,13 +25,14 @@ ROOTS = {"lanterna": REPO / "lanterna", "lanterna.tiler": REPO / "tiler",
 
 E = "lanterna.errors"
 T = "lanterna.tiler"
-BASE = {E, f"{T}.fileio", f"{T}.progress", f"{T}.documents"}
+BASE = {E, f"{T}.fileio", f"{T}.progress", f"{T}.documents", f"{T}.limits"}
 #: unit → the units it may import (besides itself). A unit is the longest matching prefix.
 ALLOWED: dict[str, set[str]] = {
     E: set(),
     "lanterna": set(),  # the package's __init__
     f"{T}.fileio": {E},
     f"{T}.documents": {E, f"{T}.fileio"},
+    f"{T}.limits": {E},
     f"{T}.progress": set(),
     T: set(),  # lanterna/tiler/__init__.py
     f"{T}.formats": BASE,

@@ -81,6 +81,8 @@ def hsh_quantisation(lo: npt.ArrayLike, hi: npt.ArrayLike
     lo32 = np.asarray(lo, np.float32)
     hi32 = np.asarray(hi, np.float32)
     span = np.where(hi32 > lo32, hi32 - lo32, 1.0).astype(np.float32)
+    if not (np.isfinite(span).all() and np.isfinite(lo32).all()):
+        raise ValueError("the fitted coefficients span more than float32 can hold")
     return span, lo32
 
 

@@ -121,6 +121,8 @@ def ptm_quantisation(lo: npt.ArrayLike, hi: npt.ArrayLike
     hi64 = np.maximum(np.asarray(hi, np.float64), 0.0)
     span = hi64 - lo64
     scale = np.where(span > 0.0, span / 254.0, 1.0).astype(np.float32)
+    if not np.isfinite(scale).all():
+        raise ValueError("the fitted coefficients span more than float32 can hold")
     bias = np.rint(-lo64 / scale.astype(np.float64)).astype(np.int32)
     return scale, bias
 

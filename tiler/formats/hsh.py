@@ -29,6 +29,7 @@ import numpy.typing as npt
 
 from lanterna.errors import LanternaInputError
 from lanterna.tiler.fileio import read_input
+from lanterna.tiler.limits import check_pixels
 
 from .hsh_model import HSH_TERMS, Hsh
 
@@ -116,6 +117,7 @@ def read_rti(path: str | Path) -> Hsh:
         raise LanternaInputError(src, f"image size must be positive, got {width}x{height}")
     if colours != 3:
         raise LanternaInputError(src, f"unsupported colour count {colours}; expected 3 (RGB)")
+    check_pixels(src, width, height, "the .rti image")
     terms, basis_type, element_size = header.ints("basis", 3)
     terms = _LEGACY_TERMS.get(terms, terms)
     if terms not in HSH_TERMS:
@@ -150,7 +152,10 @@ def read_rti(path: str | Path) -> Hsh:
     if not np.isfinite(values).all():
         raise LanternaInputError(src, "payload holds a non-finite float value")
     a = values.astype(np.float64) * scale.astype(np.float64) + bias.astype(np.float64)
-    return quantize_hsh(a)
+    try:
+        return quantize_hsh(a)
+    except ValueError as err:
+        raise LanternaInputError(src, str(err)) from None
 
 
 def quantize_hsh(coefficients: npt.ArrayLike) -> Hsh:
@@ -158,7 +163,8 @@ def quantize_hsh(coefficients: npt.ArrayLike) -> Hsh:
 
     Each term gets one scale and bias shared by R, G and B over the whole image:
     ``scale = max − min``, ``bias = min``, ``byte = round((a − min)/scale·255)``. A constant
-    term gets ``scale = 0`` and bytes 0.
+    term gets ``scale = 0`` and bytes 0. Raises ``ValueError`` if a term's range does not fit
+    float32 (the scale and bias are stored, and served, as float32).
     """
     a = np.asarray(coefficients, dtype=np.float64)
     lo = a.min(axis=(0, 1, 2))
@@ -167,4 +173,7 @@ def quantize_hsh(coefficients: npt.ArrayLike) -> Hsh:
     safe = np.where(span > 0, span, 1.0)
     t = np.where(span > 0, (a - lo) / safe * 255.0, 0.0)
     coeffs = np.clip(np.rint(t), 0, 255).astype(np.uint8)
-    return Hsh(coeffs, span.astype(np.float32), lo.astype(np.float32))
+    scale, bias = span.astype(np.float32), lo.astype(np.float32)
+    if not (np.isfinite(scale).all() and np.isfinite(bias).all()):
+        raise ValueError("coefficient values span more than float32 can hold")
+    return Hsh(coeffs, scale, bias)

@@ -22,6 +22,7 @@ import pyvips
 
 from lanterna.errors import LanternaInputError
 from lanterna.tiler.fileio import read_input
+from lanterna.tiler.limits import check_pixels
 
 from .ptm_model import Ptm
 
@@ -137,7 +138,10 @@ def _parse_header(lines: _Lines) -> PtmHeader:
             raise LanternaInputError(src, f"{name} must be positive, got {value}")
         if value > MAX_SIDE:
             raise LanternaInputError(src, f"{name} {value} is too large (max {MAX_SIDE})")
+    check_pixels(src, width, height, "the PTM")
     scale = np.array(lines.numbers("scale", 6), dtype=np.float32)
+    if not np.isfinite(scale).all():
+        raise LanternaInputError(src, "header scale value too large for float32")
     bias_values = lines.ints("bias", 6)
     if any(abs(b) > 2**31 - 1 for b in bias_values):
         raise LanternaInputError(src, "header bias value out of range")
@@ -242,21 +246,35 @@ def _decode_raw(payload: bytes, header: PtmHeader, colorspace: str, src: Path) -
     )
 
 
-def _decode_jpeg(buf: bytes, header: PtmHeader, plane: int, src: Path) -> npt.NDArray[np.uint8]:
-    """Decode one single-band JPEG stream to an ``(H, W)`` array in JPEG raster order."""
+def _check_jpeg_header(buf: bytes, header: PtmHeader, plane: int, src: Path) -> pyvips.Image:
+    """Open one JPEG stream (its header only: nothing is decoded) and check it against the PTM
+    header; return the lazy image."""
     if not buf.startswith(b"\xff\xd8"):
         raise LanternaInputError(src, f"JPEG stream {plane} does not start with a JPEG marker")
     try:
         image = pyvips.Image.jpegload_buffer(buf, fail_on="warning")
         bands, width, height = image.bands, image.width, image.height
-        if bands != 1 or width != header.width or height != header.height:
-            raise LanternaInputError(
-                src,
-                f"JPEG stream {plane} is {width}x{height} with {bands} bands,"
-                f" expected single-band {header.width}x{header.height}",
-            )
-        if image.format != "uchar":
-            raise LanternaInputError(src, f"JPEG stream {plane} is not 8-bit")
+        fmt = image.format
+    except pyvips.Error as exc:
+        reason = " ".join(str(exc.detail or exc.message).split())
+        raise LanternaInputError(
+            src, f"JPEG stream {plane} is corrupt or truncated ({_clip(reason, 80)})"
+        ) from None
+    if bands != 1 or width != header.width or height != header.height:
+        raise LanternaInputError(
+            src,
+            f"JPEG stream {plane} is {width}x{height} with {bands} bands,"
+            f" expected single-band {header.width}x{header.height}",
+        )
+    if fmt != "uchar":
+        raise LanternaInputError(src, f"JPEG stream {plane} is not 8-bit")
+    return image
+
+
+def _decode_jpeg(buf: bytes, header: PtmHeader, plane: int, src: Path) -> npt.NDArray[np.uint8]:
+    """Decode one single-band JPEG stream to an ``(H, W)`` array in JPEG raster order."""
+    image = _check_jpeg_header(buf, header, plane, src)
+    try:
         pixels = image.write_to_memory()
     except pyvips.Error as exc:
         reason = " ".join(str(exc.detail or exc.message).split())
@@ -281,6 +299,9 @@ def _decode_jpeg_planes(
             f"payload is too {which}: {len(data) - start} bytes,"
             f" the header implies {offsets[-1] - start}",
         )
+    for plane in range(n):  # every stream's own header, before anything is allocated
+        _check_jpeg_header(data[offsets[plane]: offsets[plane] + info.sizes[plane]], header,
+                           plane, src)
     h, w = header.height, header.width
     planes = np.zeros((n, h, w), dtype=np.uint8)
     for plane in sorted(range(n), key=lambda i: info.order[i]):

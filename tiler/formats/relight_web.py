@@ -32,6 +32,8 @@ import pyvips
 
 from lanterna.errors import LanternaInputError
 from lanterna.tiler.documents import read_document
+from lanterna.tiler.fileio import read_input
+from lanterna.tiler.limits import check_pixels
 
 from .planes import PlaneGroup, PlaneLayer
 
@@ -69,8 +71,10 @@ def read_relight(folder: str | Path) -> PlaneLayer:
     rtype, colorspace, width, height, nplanes = _check_info(info, info_path)
     scale, bias = _quantisation(info, nplanes, info_path)
     ext = _plane_format(info, info_path)
-    planes = np.stack([c for i in range(nplanes // 3)
-                       for c in _load_plane(info_path.parent, i, ext, width, height)])
+    check_pixels(info_path, width, height, "the Relight image")
+    # every plane's header first (sizes compared, nothing decoded), then the pixels
+    opened = [_open_plane(info_path.parent, i, ext, width, height) for i in range(nplanes // 3)]
+    planes = np.stack([c for path, image in opened for c in _decode_plane(path, image)])
     extra: dict[str, object] = {"source": "relight", "nplanes": nplanes}
     if isinstance(info.get("quality"), int):
         extra["quality"] = info["quality"]
@@ -163,34 +167,41 @@ def _plane_format(info: dict[str, Any], path: Path) -> str:
     return str(fmt)
 
 
-def _load_plane(folder: Path, index: int, ext: str, width: int,
-                height: int) -> list[npt.NDArray[np.uint8]]:
-    """Return the three ``(H, W)`` channels of ``plane_{index}.{ext}``."""
+def _open_plane(folder: Path, index: int, ext: str, width: int,
+                height: int) -> tuple[Path, pyvips.Image]:
+    """Open ``plane_{index}.{ext}`` (its header only) and check its size and bands."""
     path = folder / f"plane_{index}.{ext}"
     if not path.is_file():
         tiled = any((folder / f"plane_{index}{s}").exists() for s in (".dzi", "_files", ""))
         hint = "; tiled layouts (deepzoom, google, …) are not supported" if tiled else ""
         raise LanternaInputError(path, f"plane {index} is missing{hint}")
+    # From a buffer, not a file name: libvips caches loads by name, so a plane rewritten in
+    # place would come back stale.
+    data = read_input(path, "a plane image")
     try:
-        data = path.read_bytes()
-    except OSError as exc:
-        raise LanternaInputError(path, f"cannot read file ({exc.strerror})") from None
-    try:
-        # From a buffer, not a file name: libvips caches loads by name, so a plane rewritten in
-        # place would come back stale.
         image = pyvips.Image.new_from_buffer(data, "", fail_on="warning")
         bands, w, h, fmt = image.bands, image.width, image.height, image.format
-        if bands != 3 or fmt != "uchar":
-            raise LanternaInputError(path, f"plane has {bands} band(s) of {fmt}; "
-                                     "expected 8-bit RGB")
-        if (w, h) != (width, height):
-            raise LanternaInputError(path, f"plane is {w}x{h}, info.json says {width}x{height}")
+    except pyvips.Error as exc:
+        raise LanternaInputError(path, f"cannot decode plane ({_reason(exc)})") from None
+    if bands != 3 or fmt != "uchar":
+        raise LanternaInputError(path, f"plane has {bands} band(s) of {fmt}; expected 8-bit RGB")
+    if (w, h) != (width, height):
+        raise LanternaInputError(path, f"plane is {w}x{h}, info.json says {width}x{height}")
+    return path, image
+
+
+def _decode_plane(path: Path, image: pyvips.Image) -> list[npt.NDArray[np.uint8]]:
+    """The three ``(H, W)`` channels of an opened plane."""
+    try:
         pixels = image.write_to_memory()
     except pyvips.Error as exc:
-        reason = " ".join(str(exc.message or exc).split())[:80]
-        raise LanternaInputError(path, f"cannot decode plane ({reason})") from None
-    rgb = np.frombuffer(pixels, dtype=np.uint8).reshape(height, width, 3)
+        raise LanternaInputError(path, f"cannot decode plane ({_reason(exc)})") from None
+    rgb = np.frombuffer(pixels, dtype=np.uint8).reshape(image.height, image.width, 3)
     return [rgb[..., c] for c in range(3)]
+
+
+def _reason(exc: pyvips.Error) -> str:
+    return " ".join(str(exc.message or exc).split())[:80]
 
 
 def _stack(planes: npt.NDArray[np.uint8], idx: list[int]) -> npt.NDArray[np.uint8]:

@@ -7,12 +7,16 @@ from pathlib import Path
 import pyvips
 
 from lanterna.errors import LanternaInputError
+from lanterna.tiler.fileio import check_regular_file
+from lanterna.tiler.limits import check_pixels
 
 
 def load_rgb_image(path: Path) -> pyvips.Image:
     """Load an image file as 8-bit sRGB without alpha, with a clear error if it can't be read."""
+    check_regular_file(path, "an image")
     try:
         img = pyvips.Image.new_from_file(str(path), access="sequential")
+        check_pixels(path, img.width, img.height)
         if img.hasalpha():
             img = img.flatten(background=[0, 0, 0])
         if img.interpretation not in ("srgb", "b-w") or img.format != "uchar":

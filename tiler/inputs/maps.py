@@ -24,6 +24,7 @@ import pyvips
 
 from lanterna.errors import LanternaInputError
 from lanterna.tiler.fileio import read_input
+from lanterna.tiler.limits import check_pixels
 
 NORMAL_CONVENTIONS = ("opengl", "directx")
 _DTYPES = {"uchar": np.uint8, "ushort": np.uint16, "float": np.float32, "double": np.float64}
@@ -49,6 +50,7 @@ def _read(path: str | Path, *, allow_float: bool = False) -> npt.NDArray[np.gene
             raise LanternaInputError(src, f"unsupported sample format {fmt}; expected 8- or "
                                      "16-bit integer samples")
         bands, width, height = image.bands, image.width, image.height
+        check_pixels(src, width, height)
         pixels = image.write_to_memory()
     except pyvips.Error as exc:
         reason = " ".join(str(exc.message or exc).split())[:80]

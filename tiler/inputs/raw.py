@@ -25,6 +25,8 @@ import numpy.typing as npt
 import pyvips
 
 from lanterna.errors import LanternaInputError
+from lanterna.tiler.fileio import check_regular_file
+from lanterna.tiler.limits import check_pixels
 
 #: File name suffixes (lower case) taken as camera RAW: LibRaw's common formats.
 RAW_SUFFIXES = frozenset({
@@ -125,10 +127,10 @@ def decode_raw(path: Path, *, linear: bool) -> npt.NDArray[np.uint16]:
         import rawpy
     except ImportError:
         raise LanternaInputError(path, _INSTALL_HINT) from None
-    if not path.is_file():
-        raise LanternaInputError(path, "file not found")
+    check_regular_file(path, "a camera RAW file")
     try:
         with rawpy.imread(str(path)) as raw:
+            check_pixels(path, int(raw.sizes.width), int(raw.sizes.height), "the camera RAW image")
             rgb = raw.postprocess(**postprocess_params(linear=linear))
     except rawpy.LibRawError as err:
         raise LanternaInputError(path, f"cannot decode camera RAW ({_libraw_message(err)})") \

@@ -11,6 +11,8 @@ import numpy.typing as npt
 import pyvips
 
 from lanterna.errors import LanternaInputError
+from lanterna.tiler.fileio import check_regular_file
+from lanterna.tiler.limits import check_pixels
 
 #: Divisor turning each libvips band format into 0–1.
 _FULL_SCALE = {"uchar": 255.0, "ushort": 65535.0}
@@ -91,9 +93,11 @@ _NUMPY_FORMAT = {"uchar": np.uint8, "ushort": np.uint16, "float": np.float32,
 def _open_rgb(path: Path, access: str = "sequential") -> pyvips.Image:
     """Open ``path`` as 3 bands (alpha dropped, grey repeated), by default for one top-to-bottom
     pass; ``access="random"`` opens it afresh (not from libvips' cache) for a few rows."""
+    check_regular_file(path, "an image")
     try:
         img = (pyvips.Image.new_from_file(str(path), access="sequential") if access == "sequential"
                else pyvips.Image.new_from_file(str(path), access=access, revalidate=True))
+        check_pixels(path, img.width, img.height)
         if img.hasalpha():
             img = img.extract_band(0, n=img.bands - 1)
         if img.bands == 1:

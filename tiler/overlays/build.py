@@ -165,13 +165,15 @@ def scene_overlay(ds: DatasetWriter, layer_id: str, raw: Mapping[str, Any],
         return result
     shorts, longs = raw.get("shortInfo") or [], raw.get("longInfo") or []
     deepest = og.max_level(scale_factors(ds.width, ds.height, ds.tile_size))
+    first, last = max(0, span[0]), min(span[1], deepest)
+    if span[1] > deepest or span[0] < 0:
+        log.warning("layer %s: overlay range [%s, %s] is clamped to the pyramid's levels 0–%d",
+                    layer_id, span[0], span[1], deepest)
     stem = base / template
-    for i, level in enumerate(range(span[0], span[1] + 1)):
+    for level in range(first, last + 1):
+        i = level - span[0]
         path = stem.with_name(f"{stem.stem}{level:02d}{stem.suffix}")
         try:
-            if level < 0 or level > deepest:
-                raise LanternaInputError(path, f"level {level} is beyond the pyramid "
-                                         f"(levels 0–{deepest})")
             if not path.is_file():
                 raise LanternaInputError(path, "missing: this overlay level has texts only")
             rgba = fit_level_image(load_rgba(path), level, ds.width, ds.height, path)

@@ -13,6 +13,8 @@ import numpy.typing as npt
 import pyvips
 
 from lanterna.errors import LanternaInputError
+from lanterna.tiler.fileio import check_regular_file
+from lanterna.tiler.limits import check_pixels
 
 from . import geometry as og
 
@@ -21,8 +23,10 @@ FloatImage = npt.NDArray[np.float64]
 
 def load_rgba(path: Path) -> npt.NDArray[np.uint8]:
     """Read an image with an alpha channel as ``(H, W, 4)`` uint8 RGBA (grey + alpha expanded)."""
+    check_regular_file(path, "an overlay image")
     try:
         img = pyvips.Image.new_from_file(str(path), access="sequential")
+        check_pixels(path, img.width, img.height, "the overlay image")
         if not img.hasalpha():
             raise LanternaInputError(path, f"has no alpha channel ({img.bands} band(s)); overlay "
                                      "images must be RGBA")
@@ -55,17 +59,24 @@ def unpremultiply(pre: FloatImage) -> npt.NDArray[np.uint8]:
     return np.rint(out).astype(np.uint8)
 
 
-def resize_premultiplied(pre: FloatImage, width: int, height: int) -> FloatImage:
-    """Resize premultiplied RGBA to exactly ``width`` × ``height`` (linear kernel, no ringing)."""
+def resize_premultiplied(pre: FloatImage, width: int, height: int,
+                         box: tuple[int, int, int, int] | None = None) -> FloatImage:
+    """Resize premultiplied RGBA to exactly ``width`` × ``height`` (linear kernel, no ringing).
+
+    ``box`` (left, top, width, height) returns only that part of the resized image: only it is
+    computed, so a patch drawn much larger than the canvas costs its visible part alone.
+    """
     h, w = pre.shape[:2]
+    left, top, bw, bh = box if box is not None else (0, 0, width, height)
     if (w, h) == (width, height):
-        return pre
+        return pre[top:top + bh, left:left + bw]
     img = pyvips.Image.new_from_array(np.ascontiguousarray(pre, dtype=np.float32))
     img = img.resize(width / w, vscale=height / h, kernel="linear")
     if (img.width, img.height) != (width, height):  # the rounding of the output size
         img = img.embed(0, 0, max(width, img.width), max(height, img.height), extend="copy")
         img = img.crop(0, 0, width, height)
-    out = np.asarray(img.numpy(), dtype=np.float64).reshape(height, width, 4)
+    img = img.crop(left, top, bw, bh)
+    out = np.asarray(img.numpy(), dtype=np.float64).reshape(bh, bw, 4)
     out[..., 3] = np.clip(out[..., 3], 0.0, 1.0)
     out[..., :3] = np.clip(out[..., :3], 0.0, out[..., 3:4])
     return out
@@ -76,10 +87,8 @@ def composite(level_w: int, level_h: int,
     """Composite patches (RGBA, each with its placement) source-over, in list order."""
     acc = np.zeros((level_h, level_w, 4), np.float64)
     for rgba, placement in items:
-        pre = resize_premultiplied(premultiply(rgba), *placement.size)
-        sx, sy, sw, sh = placement.source_box
+        src = resize_premultiplied(premultiply(rgba), *placement.size, box=placement.source_box)
         cx0, cy0, cx1, cy1 = placement.clip
-        src = pre[sy:sy + sh, sx:sx + sw]
         dst = acc[cy0:cy1, cx0:cx1]
         dst *= 1.0 - src[..., 3:4]
         dst += src

@@ -16,6 +16,8 @@ from dataclasses import dataclass
 #: ``L_X_Y_W_H_O[_INFO].png``: X, Y and O may be negative, INFO may contain ``_`` (or be absent).
 _NAME = re.compile(r"^(\d+)_(-?\d+)_(-?\d+)_(\d+)_(\d+)_(-?\d+)(?:_(.*))?\.png$", re.IGNORECASE)
 _GIMP_NAME = re.compile(r"^(?:level_)?(\d+)\.png$", re.IGNORECASE)
+#: Largest factor by which a patch image may be scaled to its rectangle, up or down.
+MAX_PATCH_SCALE = 256
 
 
 class PatchNameError(ValueError):
@@ -114,6 +116,21 @@ def place(patch: Patch, width: int, height: int) -> Placement | None:
     lw, lh = level_size(width, height, patch.level)
     x0, y0, x1, y1 = destination(patch)
     return Placement((x0, y0, x1, y1), (max(x0, 0), max(y0, 0), min(x1, lw), min(y1, lh)))
+
+
+def scale_problem(image_size: tuple[int, int], placement: Placement) -> str | None:
+    """Why a patch image of ``image_size`` cannot be drawn at ``placement``, or ``None``.
+
+    It is refused when resizing it to its rectangle would scale it by more than
+    :data:`MAX_PATCH_SCALE` either way (a rectangle in the name that does not belong to the
+    image: ``…_520_100000_…`` on a 30×20 drawing).
+    """
+    (iw, ih), (dw, dh) = image_size, placement.size
+    factor = max(dw / iw, iw / dw, dh / ih, ih / dh)
+    if factor <= MAX_PATCH_SCALE:
+        return None
+    return (f"its {iw}x{ih} image would be drawn {dw}x{dh} at level (scaled {factor:,.0f}x; at "
+            f"most {MAX_PATCH_SCALE}x): check W and H in its name")
 
 
 def application_order(patches: Iterable[Patch]) -> list[Patch]:

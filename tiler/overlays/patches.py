@@ -39,7 +39,11 @@ def levels_from_patches(folder: Path, width: int, height: int, deepest: int,
             if placement is None:
                 raise LanternaInputError(path, f"rectangle {patch.x},{patch.y},{patch.w},"
                                          f"{patch.h} is outside the {width}x{height} canvas")
-            images[patch.file] = (load_rgba(path), placement)
+            rgba = load_rgba(path)
+            problem = og.scale_problem((rgba.shape[1], rgba.shape[0]), placement)
+            if problem:
+                raise LanternaInputError(path, problem)
+            images[patch.file] = (rgba, placement)
         except LanternaInputError as err:
             errors.append(str(err))
             continue

@@ -45,7 +45,8 @@ def test_scene_overlay_levels_become_overlay_images(tmp_path: Path,
         assert main(["import", str(path), "-o", str(out)]) == 0
     warnings = [r.getMessage() for r in caplog.records]
     assert any("overlay02.png: missing: this overlay level has texts only" in w for w in warnings)
-    assert any("overlay03.png: level 3 is beyond the pyramid (levels 0–2)" in w for w in warnings)
+    assert any("overlay range [1, 3] is clamped to the pyramid's levels 0–2" in w
+               for w in warnings)
     desc = json.loads((out / "lanterna.json").read_text())
     overlay = desc["layers"][0]["overlay"]
     assert overlay["levels"] == [{"level": 1, "image": "VIS_ov1", "width": 260, "height": 150,
@@ -72,3 +73,15 @@ def test_scene_without_overlay_images_still_imports(tmp_path: Path,
     overlay = desc["layers"][0]["overlay"]
     assert overlay["levels"] == [] and overlay["shortInfo"] == ["a", "b"]
     assert "annotations" not in json.loads((out / "manifest.json").read_text())["items"][0]
+
+
+def test_a_huge_range_is_clamped_to_the_pyramid_levels(tmp_path: Path,
+                                                       caplog: pytest.LogCaptureFixture) -> None:
+    """``range: [0, 1e9]`` tries the pyramid's levels only (it used to loop a billion times)."""
+    path = scene(tmp_path, {"img": "ov/overlay.png", "range": [0, 1_000_000_000]})
+    out = tmp_path / "ds"
+    with caplog.at_level(logging.WARNING, logger="lanterna.overlays"):
+        assert main(["import", str(path), "-o", str(out)]) == 0
+    warnings = [r.getMessage() for r in caplog.records]
+    assert len(warnings) <= 4, warnings  # the clamp, and one per missing level 0-2
+    assert any("clamped to the pyramid's levels 0–2" in w for w in warnings)
