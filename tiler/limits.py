@@ -9,7 +9,9 @@ or ``LANTERNA_MAX_PIXELS``, raises or lowers it.
 
 from __future__ import annotations
 
+import math
 import os
+from collections.abc import Iterable
 from pathlib import Path
 
 from lanterna.errors import LanternaInputError
@@ -55,3 +57,20 @@ def check_pixels(source: str | Path | None, width: int, height: int, what: str =
 
 def _mpx(pixels: int) -> str:
     return f"{pixels / 1e6:,.1f} Mpx" if pixels < 10**9 else f"{pixels / 1e9:,.2f} Gpx"
+
+
+#: Largest magnitude of a stored plane's scale or bias (``(t − bias)·scale``): beyond it the
+#: float32 shading (products of coefficients, in the browser and the reference renderer)
+#: overflows. Real files stay far below (PTM scales ~0.1–10, HSH and Relight ~±10).
+MAX_QUANTISATION = 1e6
+
+
+def check_quantisation(source: str | Path | None, scale: Iterable[float], bias: Iterable[float],
+                       what: str = "scale/bias") -> None:
+    """Raise a one-line error unless every scale and bias is finite and within
+    :data:`MAX_QUANTISATION` (both in the stored ``(t − bias)·scale`` convention)."""
+    for name, values in (("scale", scale), ("bias", bias)):
+        for v in values:
+            if not math.isfinite(v) or abs(v) > MAX_QUANTISATION:
+                raise LanternaInputError(source, f"{what}: {name} {v:g} is out of range (at most "
+                                         f"{MAX_QUANTISATION:g} in magnitude)")

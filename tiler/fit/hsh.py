@@ -8,6 +8,7 @@ import numpy.typing as npt
 from lanterna.tiler.formats.hsh_basis import hsh_weights
 from lanterna.tiler.formats.hsh_model import HSH_TERMS, Hsh
 from lanterna.tiler.inputs.stack import StackReader
+from lanterna.tiler.limits import MAX_QUANTISATION
 
 from .bands import hsh_band
 
@@ -81,8 +82,9 @@ def hsh_quantisation(lo: npt.ArrayLike, hi: npt.ArrayLike
     lo32 = np.asarray(lo, np.float32)
     hi32 = np.asarray(hi, np.float32)
     span = np.where(hi32 > lo32, hi32 - lo32, 1.0).astype(np.float32)
-    if not (np.isfinite(span).all() and np.isfinite(lo32).all()):
-        raise ValueError("the fitted coefficients span more than float32 can hold")
+    if not (np.isfinite(span).all() and np.isfinite(lo32).all()) or max(
+            np.abs(span).max(), np.abs(lo32 / span).max()) > MAX_QUANTISATION:
+        raise ValueError("the fitted coefficients span more than float32 shading can use")
     return span, lo32
 
 

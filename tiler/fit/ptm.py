@@ -15,6 +15,7 @@ import numpy.typing as npt
 
 from lanterna.tiler.formats.ptm_model import Ptm
 from lanterna.tiler.inputs.stack import StackReader
+from lanterna.tiler.limits import MAX_QUANTISATION
 
 from .bands import LUMINANCE_WEIGHTS, ptm_lrgb_band
 
@@ -121,8 +122,8 @@ def ptm_quantisation(lo: npt.ArrayLike, hi: npt.ArrayLike
     hi64 = np.maximum(np.asarray(hi, np.float64), 0.0)
     span = hi64 - lo64
     scale = np.where(span > 0.0, span / 254.0, 1.0).astype(np.float32)
-    if not np.isfinite(scale).all():
-        raise ValueError("the fitted coefficients span more than float32 can hold")
+    if not np.isfinite(scale).all() or np.abs(scale).max() > MAX_QUANTISATION:
+        raise ValueError("the fitted coefficients span more than float32 shading can use")
     bias = np.rint(-lo64 / scale.astype(np.float64)).astype(np.int32)
     return scale, bias
 

@@ -29,9 +29,10 @@ import numpy.typing as npt
 
 from lanterna.errors import LanternaInputError
 from lanterna.tiler.fileio import read_input
-from lanterna.tiler.limits import check_pixels
+from lanterna.tiler.limits import check_pixels, check_quantisation
 
 from .hsh_model import HSH_TERMS, Hsh
+from .layouts import hsh_plane_quantisation
 
 #: RTI type codes of the universal header, for error messages.
 RTI_TYPES = {0: "reserved", 1: "PTM", 2: "SH", 3: "HSH", 4: "adaptive basis"}
@@ -147,15 +148,19 @@ def read_rti(path: str | Path) -> Hsh:
         )
     if element_size == 1:
         coeffs = np.frombuffer(payload, dtype=np.uint8).reshape(height, width, 3, terms).copy()
-        return Hsh(coeffs, scale, bias)
+        hsh = Hsh(coeffs, scale, bias)
+        check_quantisation(src, *hsh_plane_quantisation(hsh), "scale/bias table")
+        return hsh
     values = np.frombuffer(payload, dtype="<f4").reshape(height, width, 3, terms)
     if not np.isfinite(values).all():
         raise LanternaInputError(src, "payload holds a non-finite float value")
     a = values.astype(np.float64) * scale.astype(np.float64) + bias.astype(np.float64)
     try:
-        return quantize_hsh(a)
+        hsh = quantize_hsh(a)
     except ValueError as err:
         raise LanternaInputError(src, str(err)) from None
+    check_quantisation(src, *hsh_plane_quantisation(hsh), "float coefficients")
+    return hsh
 
 
 def quantize_hsh(coefficients: npt.ArrayLike) -> Hsh:

@@ -22,7 +22,7 @@ import pyvips
 
 from lanterna.errors import LanternaInputError
 from lanterna.tiler.fileio import read_input
-from lanterna.tiler.limits import check_pixels
+from lanterna.tiler.limits import check_pixels, check_quantisation
 
 from .ptm_model import Ptm
 
@@ -146,6 +146,8 @@ def _parse_header(lines: _Lines) -> PtmHeader:
     if any(abs(b) > 2**31 - 1 for b in bias_values):
         raise LanternaInputError(src, "header bias value out of range")
     bias = np.array(bias_values, dtype=np.int32)
+    # stored as (t − b/255)·s (docs/dataset-format.md): bounded for float32 shading
+    check_quantisation(src, scale.tolist(), (bias / 255.0).tolist(), "header")
     return PtmHeader(version, fmt, width, height, scale, bias)
 
 

@@ -33,7 +33,7 @@ import pyvips
 from lanterna.errors import LanternaInputError
 from lanterna.tiler.documents import read_document
 from lanterna.tiler.fileio import read_input
-from lanterna.tiler.limits import check_pixels
+from lanterna.tiler.limits import check_pixels, check_quantisation
 
 from .planes import PlaneGroup, PlaneLayer
 
@@ -157,6 +157,7 @@ def _quantisation(info: dict[str, Any], nplanes: int, path: Path) -> tuple[list[
             raise LanternaInputError(path, f"{where}.{key} holds a non-numeric or non-finite "
                                      "value")
         out.append([float(v) for v in values])
+    check_quantisation(path, out[0], out[1], where)
     return out[0], out[1]
 
 
@@ -201,7 +202,9 @@ def _decode_plane(path: Path, image: pyvips.Image) -> list[npt.NDArray[np.uint8]
 
 
 def _reason(exc: pyvips.Error) -> str:
-    return " ".join(str(exc.message or exc).split())[:80]
+    """libvips' own reason: the first line of its detail (the message is often generic)."""
+    detail = [line for line in str(exc.detail or "").splitlines() if line.strip()]
+    return " ".join((detail[0] if detail else str(exc.message or exc)).split())[:80]
 
 
 def _stack(planes: npt.NDArray[np.uint8], idx: list[int]) -> npt.NDArray[np.uint8]:

@@ -25,6 +25,7 @@ from lanterna.tiler.dataset.layers import add_planes_layer
 from lanterna.tiler.dataset.plan import LayerPlan
 from lanterna.tiler.formats.planes import PlaneGroup, PlaneLayer
 from lanterna.tiler.inputs.maps import load_color_map
+from lanterna.tiler.limits import check_quantisation
 
 from .overlay import attach_overlay
 from .paths import referenced
@@ -131,6 +132,7 @@ def _plan_ptm(layer: SceneLayer, path: Path) -> LayerPlan:
         raise LanternaInputError(path, f"layer {layer.id}: the coefficient maps differ in size")
     s = list(layer.scale)
     b = [v / 255.0 for v in layer.bias]
+    check_quantisation(path, s, b, f"layer {layer.id}: LRGB_PTM")
     planes = PlaneLayer("ptm", [
         PlaneGroup(["L0", "L1", "L2"], np.ascontiguousarray(images[0]), s[0:3], b[0:3]),
         PlaneGroup(["L3", "L4", "L5"], np.ascontiguousarray(images[1]), s[3:6], b[3:6]),

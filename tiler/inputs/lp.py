@@ -16,6 +16,10 @@ import numpy as np
 import numpy.typing as npt
 
 from lanterna.errors import LanternaInputError
+from lanterna.tiler.fileio import read_input
+
+#: Largest .lp file read (a dome of 10,000 lights is about 0.5 MB).
+MAX_LP_BYTES = 16 << 20
 
 
 def read_lp(path: Path, images_dir: Path) -> tuple[list[Path], npt.NDArray[np.float64]]:
@@ -38,10 +42,8 @@ def read_lp(path: Path, images_dir: Path) -> tuple[list[Path], npt.NDArray[np.fl
         or non-finite vector, a count that does not match the rows, or an image not on disk.
     """
     path, images_dir = Path(path), Path(images_dir)
-    try:
-        text = path.read_text(encoding="utf-8-sig", errors="replace")
-    except OSError as err:
-        raise LanternaInputError(path, f"cannot read: {err.strerror or err}") from None
+    text = read_input(path, "a light-position (.lp) file",
+                      max_bytes=MAX_LP_BYTES).decode("utf-8-sig", errors="replace")
     lines = [(no, line.strip()) for no, line in enumerate(text.splitlines(), 1)]
     lines = [(no, line) for no, line in lines if line and not line.startswith("#")]
     if not lines:

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import os
 from pathlib import Path
 
 import numpy as np
@@ -90,5 +91,17 @@ def test_ambiguous_case_is_an_error(tmp_path: Path) -> None:
 
 
 def test_unreadable_file(tmp_path: Path) -> None:
-    with pytest.raises(LanternaInputError, match="cannot read"):
+    with pytest.raises(LanternaInputError, match="nope.lp: file not found"):
         read_lp(tmp_path / "nope.lp", tmp_path)
+    with pytest.raises(LanternaInputError, match="is a directory"):
+        read_lp(tmp_path, tmp_path)
+
+
+def test_a_device_or_fifo_is_refused_without_blocking(tmp_path: Path) -> None:
+    """``/dev/zero`` would read forever and a FIFO would block: both are refused at once."""
+    with pytest.raises(LanternaInputError, match="not a regular file"):
+        read_lp(Path("/dev/zero"), tmp_path)
+    fifo = tmp_path / "lights.lp"
+    os.mkfifo(fifo)
+    with pytest.raises(LanternaInputError, match="lights.lp: is not a regular file"):
+        read_lp(fifo, tmp_path)
