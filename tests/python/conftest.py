@@ -16,7 +16,6 @@ import pytest
 from hypothesis import HealthCheck, settings
 
 from tests.python.fixtures import fuzz
-
 from tests.python.fixtures.lens import Dataset, make_lens_dataset
 from tests.python.fixtures.servers import LiveServer
 
