@@ -29,7 +29,7 @@ def levels_from_patches(folder: Path, width: int, height: int, deepest: int,
         try:
             patch = og.parse_patch_name(path.name)
         except og.PatchNameError as err:
-            errors.append(f"{path}: {err}")
+            errors.append(str(LanternaInputError(path, str(err))))
             continue
         try:
             if patch.level > deepest:
@@ -66,7 +66,7 @@ def levels_from_gimp(folder: Path, width: int, height: int, deepest: int,
         try:
             level = og.parse_gimp_name(path.name)
         except og.PatchNameError as err:
-            errors.append(f"{path}: {err}")
+            errors.append(str(LanternaInputError(path, str(err))))
             continue
         try:
             if level in seen:
