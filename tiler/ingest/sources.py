@@ -58,6 +58,8 @@ def plan_source(path: Path, *, layer_id: str | None = None, label: str | None = 
         return LayerPlan(lid, lbl, planes.width, planes.height, path.name,
                          lambda ds: add_planes_layer(ds, planes, layer_id=lid, label=lbl))
     if not path.is_file():
+        if path.exists():
+            raise LanternaInputError(path, "is not a regular file (a device, FIFO or socket)")
         raise LanternaInputError(path, "no such file")
     suffix = path.suffix.lower()
     if suffix == ".ptm":
