@@ -9,7 +9,9 @@ Every response carries ``Link: <…/level1.json>;rel="profile"``; images also ca
 URL as ``rel="canonical"`` (non-canonical forms are served, not redirected). Responses have a
 strong ``ETag`` (file identity + canonical request), ``Last-Modified`` (the TIFF's mtime) and
 ``Cache-Control``; a matching ``If-None-Match`` or ``If-Modified-Since`` gives 304 before any
-pixel is decoded. Sizes over the limits are refused with 400 before any pixel work.
+pixel is decoded. Sizes over the limits are refused with 400 before any pixel work; the limits
+published are at most what every output format can encode (:meth:`Limits.encodable`: WebP's
+16383 px), so ``max`` and every size within the limits can be served in every format.
 """
 
 from __future__ import annotations
@@ -31,7 +33,14 @@ from lanterna.tiler.iiif.spec import IMAGE_CONTEXT, IMAGE_PROTOCOL, image_profil
 
 from . import image_response
 from .errors import plain_error
-from .image_request import FORMATS, Limits, RequestError, max_size, parse_image_request
+from .image_request import (
+    FORMATS,
+    MAX_SIDE,
+    Limits,
+    RequestError,
+    max_size,
+    parse_image_request,
+)
 from .safe_path import contained_file
 
 PROFILE = "level1"
@@ -41,8 +50,8 @@ EXTRA_FEATURES = ["regionByPct", "sizeByPct", "sizeByConfinedWh", "rotationBy90s
 EXTRA_QUALITIES = ["color", "gray", "bitonal"]
 #: Config keys and their defaults (documented in docs/serving.md).
 DEFAULTS: dict[str, Any] = {
-    "IIIF_MAX_WIDTH": 16384,
-    "IIIF_MAX_HEIGHT": 16384,
+    "IIIF_MAX_WIDTH": MAX_SIDE,
+    "IIIF_MAX_HEIGHT": MAX_SIDE,
     "IIIF_MAX_AREA": 16 * 1024 * 1024,
     "IIIF_UPSCALING": False,
     "IIIF_TILE_SIZE": 256,
@@ -65,9 +74,10 @@ def init_app(app: Flask) -> None:
 
 
 def _limits() -> Limits:
+    """The configured limits, sides capped at what every output format can encode."""
     cfg = current_app.config
     return Limits(int(cfg["IIIF_MAX_WIDTH"]), int(cfg["IIIF_MAX_HEIGHT"]),
-                  int(cfg["IIIF_MAX_AREA"]), bool(cfg["IIIF_UPSCALING"]))
+                  int(cfg["IIIF_MAX_AREA"]), bool(cfg["IIIF_UPSCALING"])).encodable()
 
 
 def _tiff(dataset: str, image: str) -> Path:
@@ -178,7 +188,7 @@ def info(dataset: str, image: str) -> Response | BaseResponse:
         return _cached(Response(status=304), tiff, etag)
     doc = info_document(tiff, image, service_id, limits, tile_size)
     mimetype = f'application/ld+json;profile="{IMAGE_CONTEXT}"' if ld else "application/json"
-    resp = Response(json.dumps(doc, indent=2), mimetype=mimetype)
+    resp = Response(json.dumps(doc, indent=2, allow_nan=False), mimetype=mimetype)
     resp.headers["Content-Type"] = mimetype
     resp.vary.add("Accept")
     return _cached(resp, tiff, etag)
