@@ -202,10 +202,12 @@ def _print_urls(args: argparse.Namespace, address: tuple[str, int], root: Path,
     engine = ("" if workers is None else
               f" with gunicorn, {workers} worker{'s' if workers > 1 else ''} × {threads} threads")
     print(f"Lanterna serving {root} at {url}{engine}  (Ctrl-C to stop)")
-    datasets = sorted(root.glob("*/lanterna.json"))
-    for desc in datasets:
-        manifest = f"{url}datasets/{desc.parent.name}/manifest.json"
-        print(f"  {desc.parent.name}: {url}viewer/?manifest={manifest}")
+    from lanterna.tiler.dataset.publish import list_datasets
+
+    datasets = list_datasets(root)  # no hidden entries: versions, temporary folders
+    for folder in datasets:
+        manifest = f"{url}datasets/{folder.name}/manifest.json"
+        print(f"  {folder.name}: {url}viewer/?manifest={manifest}")
     if not datasets:
         print(f"  no datasets yet: lanterna import FILE -o {root / 'NAME'}")
     if workers is None:
