@@ -17,6 +17,7 @@ from pathlib import Path
 from typing import Any
 
 from flask import Flask, Response, abort, redirect, request, send_from_directory
+from werkzeug.exceptions import NotFound
 from werkzeug.wrappers import Response as BaseResponse
 
 from lanterna.tiler.iiif.spec import IMAGE_CONTEXT, PRESENTATION_CONTEXT
@@ -92,7 +93,13 @@ def create_app(config: dict[str, Any] | None = None) -> Flask:
             if len(parts) == 3 and parts[1] == "iiif" and (folder / "info.json").is_file():
                 return redirect(f"{request.base_url.rstrip('/')}/info.json", code=303)
             abort(404)  # no directory listings
-        return _file_response(root, _served_file(root, path))
+        target = _served_file(root, path)
+        try:
+            return _file_response(root, target)
+        except (FileNotFoundError, NotFound):
+            # The dataset was republished between resolving its link and opening the file, and
+            # its previous version removed: resolve the link again, once.
+            return _file_response(root, _served_file(root, path))
 
     return app
 

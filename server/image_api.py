@@ -16,14 +16,17 @@ published are at most what every output format can encode (:meth:`Limits.encodab
 
 from __future__ import annotations
 
+import functools
 import hashlib
 import json
 import re
+from collections.abc import Callable
 from datetime import UTC, datetime
 from functools import lru_cache
 from pathlib import Path
-from typing import Any
+from typing import Any, TypeVar, cast
 
+import pyvips
 from flask import Blueprint, Flask, Response, current_app, redirect, request, url_for
 from werkzeug.http import is_resource_modified
 from werkzeug.wrappers import Response as BaseResponse
@@ -78,6 +81,26 @@ def _limits() -> Limits:
     cfg = current_app.config
     return Limits(int(cfg["IIIF_MAX_WIDTH"]), int(cfg["IIIF_MAX_HEIGHT"]),
                   int(cfg["IIIF_MAX_AREA"]), bool(cfg["IIIF_UPSCALING"])).encodable()
+
+
+_View = TypeVar("_View", bound=Callable[..., Response | BaseResponse])
+
+
+def _once_more_if_replaced(view: _View) -> _View:
+    """Run ``view`` again, once, if reading its TIFF failed.
+
+    A dataset republished during the request has its previous version (the TIFF just resolved)
+    removed; the second run resolves the dataset's link to the new version. A TIFF that cannot
+    be read at all fails twice, and is a 500 as before.
+    """
+    @functools.wraps(view)
+    def run(*args: Any, **kwargs: Any) -> Response | BaseResponse:
+        try:
+            return view(*args, **kwargs)
+        except (OSError, pyvips.Error):
+            return view(*args, **kwargs)
+
+    return cast(_View, run)
 
 
 def _tiff(dataset: str, image: str) -> Path:
@@ -176,6 +199,7 @@ def info_document(tiff: Path, image: str, service_id: str, limits: Limits,
 
 
 @bp.get("/<dataset>/<image>/info.json")
+@_once_more_if_replaced
 def info(dataset: str, image: str) -> Response | BaseResponse:
     """Serve info.json (JSON-LD when asked for, with ``id`` = this request's base URI)."""
     tiff = _tiff(dataset, image)
@@ -195,6 +219,7 @@ def info(dataset: str, image: str) -> Response | BaseResponse:
 
 
 @bp.get("/<dataset>/<image>/<region>/<size>/<rotation>/<quality_format>")
+@_once_more_if_replaced
 def image_request(dataset: str, image: str, region: str, size: str, rotation: str,
                   quality_format: str) -> Response | BaseResponse:
     """Serve one image request: parse, check limits, read the right level, encode."""
