@@ -143,7 +143,7 @@ def _lock_file(dataset: Path, path: Path, deadline: float,
         except BaseException:
             os.close(fd)
             raise
-        if _same_file(fd, path):
+        if same_file(fd, path):
             os.ftruncate(fd, 0)
             os.pwrite(fd, f"{os.getpid()}\n".encode(), 0)
             return fd
@@ -157,7 +157,8 @@ def _unlock_file(path: Path, fd: int) -> None:
         os.close(fd)  # closing the last descriptor releases the flock
 
 
-def _same_file(fd: int, path: Path) -> bool:
+def same_file(fd: int, path: Path) -> bool:
+    """Return whether the open ``fd`` is the file ``path`` names now (links followed)."""
     try:
         here, there = os.fstat(fd), os.stat(path)
     except FileNotFoundError:

@@ -33,7 +33,7 @@ from pathlib import Path
 
 from lanterna.errors import LanternaInputError
 
-from .lock import dataset_lock
+from .lock import dataset_lock, same_file
 from .output import write_errors
 
 _ENTRY = re.compile(r"^\.(?P<name>.+)\.(?P<kind>tmp|v|link|old)-(?P<id>[A-Za-z0-9_]+)$")
@@ -139,7 +139,7 @@ def reading(dataset: Path) -> Iterator[Path]:
         except OSError as err:
             raise LanternaInputError(dataset, f"cannot read ({err.strerror})") from None
         try:
-            if _lock_shared(fd) and _is_current(fd, dataset):
+            if _lock_shared(fd) and same_file(fd, dataset):
                 yield real
                 return
         finally:
@@ -243,14 +243,6 @@ def _lock_shared(fd: int) -> bool:
     except OSError:
         pass  # no flock on folders here: read without the guarantee
     return True
-
-
-def _is_current(fd: int, dataset: Path) -> bool:
-    try:
-        here, now = os.fstat(fd), os.stat(dataset)
-    except FileNotFoundError:
-        return False
-    return (here.st_dev, here.st_ino) == (now.st_dev, now.st_ino)
 
 
 def _rename_quietly(src: Path, dst: Path) -> Path | None:
