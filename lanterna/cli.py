@@ -29,6 +29,10 @@ def main(argv: list[str] | None = None) -> int:
     except LanternaInputError as err:
         print(f"lanterna: error: {err}", file=sys.stderr)
         return 2
+    except OSError as err:  # one no command turned into its own error: still one line
+        where = f"{err.filename}: " if err.filename else ""
+        print(f"lanterna: error: {where}{err.strerror or err}", file=sys.stderr)
+        return 2
     except KeyboardInterrupt:
         return 130
     finally:

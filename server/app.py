@@ -17,6 +17,7 @@ from pathlib import Path
 from typing import Any
 
 from flask import Flask, Response, abort, redirect, request, send_from_directory
+from werkzeug.exceptions import NotFound
 from werkzeug.wrappers import Response as BaseResponse
 
 from lanterna.tiler.iiif.spec import IMAGE_CONTEXT, PRESENTATION_CONTEXT
@@ -92,22 +93,40 @@ def create_app(config: dict[str, Any] | None = None) -> Flask:
             if len(parts) == 3 and parts[1] == "iiif" and (folder / "info.json").is_file():
                 return redirect(f"{request.base_url.rstrip('/')}/info.json", code=303)
             abort(404)  # no directory listings
-        target = contained_file(root, path)
-        if target is None or Path(path).suffix.lower() not in _MEDIA:
-            abort(404)
-        if target.suffix.lower() == ".json":
-            return _json_response(root, parts[0], target)
-        # ETag (mtime-size-hash), Last-Modified and 304s come from send_file (conditional=True).
-        return send_from_directory(root, str(target.relative_to(root)),
-                                   mimetype=_MEDIA[target.suffix.lower()], max_age=3600)
+        target = _served_file(root, path)
+        try:
+            return _file_response(root, target)
+        except (FileNotFoundError, NotFound):
+            # The dataset was republished between resolving its link and opening the file, and
+            # its previous version removed: resolve the link again, once.
+            return _file_response(root, _served_file(root, path))
 
     return app
 
 
-def _json_response(root: Path, dataset: str, target: Path) -> BaseResponse:
+def _served_file(root: Path, path: str) -> Path:
+    """Return the resolved file the request ``path`` names, or abort with 404."""
+    target = contained_file(root, path)
+    if target is None or Path(path).suffix.lower() not in _MEDIA \
+            or target.suffix.lower() not in _MEDIA:
+        abort(404)
+    return target
+
+
+def _file_response(root: Path, target: Path) -> BaseResponse:
+    """Serve the resolved file ``target`` of the data root (JSON rewritten, tiles as they are)."""
+    if target.suffix.lower() == ".json":
+        return _json_response(root, target)
+    # ETag (mtime-size-hash), Last-Modified and 304s come from send_file (conditional=True).
+    return send_from_directory(root, str(target.relative_to(root)),
+                               mimetype=_MEDIA[target.suffix.lower()], max_age=3600)
+
+
+def _json_response(root: Path, target: Path) -> BaseResponse:
     """Serve a JSON document with the dataset's base URL rewritten to the request's."""
     text = target.read_text()
-    recorded = _recorded_base(root / dataset)
+    # the description of the version the document belongs to (the dataset's link resolved)
+    recorded = _recorded_base(root / target.relative_to(root).parts[0])
     served = request.url_root.rstrip("/") + "/datasets"
     if recorded and recorded != served:
         text = text.replace(recorded + "/", served + "/")
@@ -135,12 +154,16 @@ def _recorded_base(dataset_dir: Path) -> str | None:
 
 def _index_html(root: Path) -> str:
     rows = []
-    for desc_path in sorted(root.glob("*/lanterna.json")):
+    for name in sorted(p.name for p in root.iterdir()):
+        # only what /datasets serves: no hidden entries (a dataset's versions, a killed
+        # writer's temporary folders), nothing a link takes outside the root
+        desc_path = contained_file(root, f"{name}/lanterna.json")
+        if desc_path is None:
+            continue
         try:
             desc = json.loads(desc_path.read_text())
-        except ValueError:
+        except (OSError, ValueError):
             continue
-        name = desc_path.parent.name
         manifest = f"{request.url_root}datasets/{name}/manifest.json"
         rows.append(
             f'<li><a href="viewer/?manifest={html.escape(manifest)}">'

@@ -9,19 +9,24 @@ Every response carries ``Link: <…/level1.json>;rel="profile"``; images also ca
 URL as ``rel="canonical"`` (non-canonical forms are served, not redirected). Responses have a
 strong ``ETag`` (file identity + canonical request), ``Last-Modified`` (the TIFF's mtime) and
 ``Cache-Control``; a matching ``If-None-Match`` or ``If-Modified-Since`` gives 304 before any
-pixel is decoded. Sizes over the limits are refused with 400 before any pixel work.
+pixel is decoded. Sizes over the limits are refused with 400 before any pixel work; the limits
+published are at most what every output format can encode (:meth:`Limits.encodable`: WebP's
+16383 px), so ``max`` and every size within the limits can be served in every format.
 """
 
 from __future__ import annotations
 
+import functools
 import hashlib
 import json
 import re
+from collections.abc import Callable
 from datetime import UTC, datetime
 from functools import lru_cache
 from pathlib import Path
-from typing import Any
+from typing import Any, TypeVar, cast
 
+import pyvips
 from flask import Blueprint, Flask, Response, current_app, redirect, request, url_for
 from werkzeug.http import is_resource_modified
 from werkzeug.wrappers import Response as BaseResponse
@@ -31,7 +36,14 @@ from lanterna.tiler.iiif.spec import IMAGE_CONTEXT, IMAGE_PROTOCOL, image_profil
 
 from . import image_response
 from .errors import plain_error
-from .image_request import FORMATS, Limits, RequestError, max_size, parse_image_request
+from .image_request import (
+    FORMATS,
+    MAX_SIDE,
+    Limits,
+    RequestError,
+    max_size,
+    parse_image_request,
+)
 from .safe_path import contained_file
 
 PROFILE = "level1"
@@ -41,8 +53,8 @@ EXTRA_FEATURES = ["regionByPct", "sizeByPct", "sizeByConfinedWh", "rotationBy90s
 EXTRA_QUALITIES = ["color", "gray", "bitonal"]
 #: Config keys and their defaults (documented in docs/serving.md).
 DEFAULTS: dict[str, Any] = {
-    "IIIF_MAX_WIDTH": 16384,
-    "IIIF_MAX_HEIGHT": 16384,
+    "IIIF_MAX_WIDTH": MAX_SIDE,
+    "IIIF_MAX_HEIGHT": MAX_SIDE,
     "IIIF_MAX_AREA": 16 * 1024 * 1024,
     "IIIF_UPSCALING": False,
     "IIIF_TILE_SIZE": 256,
@@ -65,9 +77,30 @@ def init_app(app: Flask) -> None:
 
 
 def _limits() -> Limits:
+    """The configured limits, sides capped at what every output format can encode."""
     cfg = current_app.config
     return Limits(int(cfg["IIIF_MAX_WIDTH"]), int(cfg["IIIF_MAX_HEIGHT"]),
-                  int(cfg["IIIF_MAX_AREA"]), bool(cfg["IIIF_UPSCALING"]))
+                  int(cfg["IIIF_MAX_AREA"]), bool(cfg["IIIF_UPSCALING"])).encodable()
+
+
+_View = TypeVar("_View", bound=Callable[..., Response | BaseResponse])
+
+
+def _once_more_if_replaced(view: _View) -> _View:
+    """Run ``view`` again, once, if reading its TIFF failed.
+
+    A dataset republished during the request has its previous version (the TIFF just resolved)
+    removed; the second run resolves the dataset's link to the new version. A TIFF that cannot
+    be read at all fails twice, and is a 500 as before.
+    """
+    @functools.wraps(view)
+    def run(*args: Any, **kwargs: Any) -> Response | BaseResponse:
+        try:
+            return view(*args, **kwargs)
+        except (OSError, pyvips.Error):
+            return view(*args, **kwargs)
+
+    return cast(_View, run)
 
 
 def _tiff(dataset: str, image: str) -> Path:
@@ -166,6 +199,7 @@ def info_document(tiff: Path, image: str, service_id: str, limits: Limits,
 
 
 @bp.get("/<dataset>/<image>/info.json")
+@_once_more_if_replaced
 def info(dataset: str, image: str) -> Response | BaseResponse:
     """Serve info.json (JSON-LD when asked for, with ``id`` = this request's base URI)."""
     tiff = _tiff(dataset, image)
@@ -178,13 +212,14 @@ def info(dataset: str, image: str) -> Response | BaseResponse:
         return _cached(Response(status=304), tiff, etag)
     doc = info_document(tiff, image, service_id, limits, tile_size)
     mimetype = f'application/ld+json;profile="{IMAGE_CONTEXT}"' if ld else "application/json"
-    resp = Response(json.dumps(doc, indent=2), mimetype=mimetype)
+    resp = Response(json.dumps(doc, indent=2, allow_nan=False), mimetype=mimetype)
     resp.headers["Content-Type"] = mimetype
     resp.vary.add("Accept")
     return _cached(resp, tiff, etag)
 
 
 @bp.get("/<dataset>/<image>/<region>/<size>/<rotation>/<quality_format>")
+@_once_more_if_replaced
 def image_request(dataset: str, image: str, region: str, size: str, rotation: str,
                   quality_format: str) -> Response | BaseResponse:
     """Serve one image request: parse, check limits, read the right level, encode."""

@@ -3,9 +3,9 @@
 ``parse_image_request`` turns the four path segments ``{region}/{size}/{rotation}/{quality}.
 {format}`` and the image size into an :class:`ImageRequest` with integer pixel geometry, or
 raises :class:`RequestError` with the status the spec asks for: 400 for bad syntax, a zero-size
-or out-of-bounds region, upscaling without ``^`` or a size over the limits; 501 for a valid
-request of a feature this server does not implement (arbitrary rotation, upscaling when it is off,
-formats it cannot write).
+or out-of-bounds region, upscaling without ``^``, a size over the limits or over what the format's
+encoder can write (:data:`ENCODER_MAX_SIDE`); 501 for a valid request of a feature this server
+does not implement (arbitrary rotation, upscaling when it is off, formats it cannot write).
 """
 
 from __future__ import annotations
@@ -13,13 +13,21 @@ from __future__ import annotations
 import math
 import re
 from collections.abc import Callable
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from typing import TypeVar
 
 #: Output formats and their media types (``jpg`` is required; the others are extras).
 FORMATS = {"jpg": "image/jpeg", "png": "image/png", "webp": "image/webp", "tif": "image/tiff"}
 #: Formats the spec names that this server does not write: a valid request, so 501.
 KNOWN_FORMATS = ("gif", "jp2", "pdf")
+#: The largest width or height each output format's encoder writes (None: no limit that any
+#: request can reach), measured with libvips 8.18: libwebp refuses 16384 ("image too large"),
+#: libjpeg-turbo 65501 ("Maximum supported image dimension is 65500 pixels"); PNG and TIFF were
+#: written at 10,000,001 px. ``tests/python/server/test_image_api.py`` checks each value.
+ENCODER_MAX_SIDE: dict[str, int | None] = {"jpg": 65500, "png": None, "webp": 16383, "tif": None}
+#: The largest side every format served can be written at (WebP's), and so the largest
+#: ``maxWidth``/``maxHeight`` the server publishes: ``max`` must be servable in every format.
+MAX_SIDE = min(side for side in ENCODER_MAX_SIDE.values() if side is not None)
 QUALITIES = ("default", "color", "gray", "bitonal")
 _INT = r"(\d{1,9})"
 _NUM = r"(\d{1,9}(?:\.\d*)?|\.\d+)"
@@ -54,10 +62,15 @@ class Limits:
         Whether ``^`` sizes (upscaling) are served; without it they give 501.
     """
 
-    max_width: int = 16384
-    max_height: int = 16384
+    max_width: int = MAX_SIDE
+    max_height: int = MAX_SIDE
     max_area: int = 16 * 1024 * 1024
     upscaling: bool = False
+
+    def encodable(self) -> Limits:
+        """Return these limits with the sides lowered to :data:`MAX_SIDE` where above it."""
+        return replace(self, max_width=min(self.max_width, MAX_SIDE),
+                       max_height=min(self.max_height, MAX_SIDE))
 
 
 @dataclass(frozen=True)
@@ -272,4 +285,8 @@ def parse_image_request(region: str, size: str, rotation: str, quality_format: s
     if errors:  # a syntax error (400) wins over an unimplemented feature (501)
         raise min(errors, key=lambda err: err.status != 400)
     assert box is not None and out is not None and rot is not None and qf is not None
+    side = ENCODER_MAX_SIDE.get(qf[1])
+    if side is not None and max(out) > side:  # the limits allowed it: refuse before encoding
+        raise RequestError(400, f"size {out[0]}x{out[1]} is too large for {qf[1]} (at most "
+                           f"{side} pixels on a side)")
     return ImageRequest(*box, *out, *rot, *qf)

@@ -66,7 +66,8 @@ def _worker_args(p: argparse.ArgumentParser) -> None:
     p.add_argument("--threads", type=int, default=None, metavar="T",
                    help="threads per gunicorn worker (default 8; needs --workers)")
     p.add_argument("--max-size", type=int, default=None, metavar="PX",
-                   help="IIIF image server: largest output width or height (default 16384)")
+                   help="IIIF image server: largest output width or height (default and "
+                        "most 16383, the largest side WebP can encode)")
     p.add_argument("--max-area", type=float, default=None, metavar="MPX",
                    help="IIIF image server: largest output area in megapixels (default 16.8)")
 
@@ -76,8 +77,12 @@ def _limits(args: argparse.Namespace) -> dict[str, object]:
     config: dict[str, object] = {}
     size, area = getattr(args, "max_size", None), getattr(args, "max_area", None)
     if size is not None:
-        if size < 1:
-            raise LanternaInputError(None, "--max-size must be at least 1")
+        from lanterna.server.image_request import MAX_SIDE
+
+        if not 1 <= size <= MAX_SIDE:
+            raise LanternaInputError(None, f"--max-size must be between 1 and {MAX_SIDE} (the "
+                                     "largest side the image server can encode in every "
+                                     "format it offers, WebP's)")
         config["IIIF_MAX_WIDTH"] = config["IIIF_MAX_HEIGHT"] = size
     if area is not None:
         if area <= 0:
@@ -197,10 +202,12 @@ def _print_urls(args: argparse.Namespace, address: tuple[str, int], root: Path,
     engine = ("" if workers is None else
               f" with gunicorn, {workers} worker{'s' if workers > 1 else ''} × {threads} threads")
     print(f"Lanterna serving {root} at {url}{engine}  (Ctrl-C to stop)")
-    datasets = sorted(root.glob("*/lanterna.json"))
-    for desc in datasets:
-        manifest = f"{url}datasets/{desc.parent.name}/manifest.json"
-        print(f"  {desc.parent.name}: {url}viewer/?manifest={manifest}")
+    from lanterna.tiler.dataset.publish import list_datasets
+
+    datasets = list_datasets(root)  # no hidden entries: versions, temporary folders
+    for folder in datasets:
+        manifest = f"{url}datasets/{folder.name}/manifest.json"
+        print(f"  {folder.name}: {url}viewer/?manifest={manifest}")
     if not datasets:
         print(f"  no datasets yet: lanterna import FILE -o {root / 'NAME'}")
     if workers is None:

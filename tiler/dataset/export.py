@@ -8,8 +8,11 @@ every URL that starts with the dataset's recorded ``baseUrl`` rewritten to start
 ``baseUrl`` …). Everything else is hard-linked (copied when linking is impossible), so the
 export of a large dataset costs little space and time. No server is needed to use the result.
 
-The tree is built in a temporary folder beside ``out`` and renamed into place when complete; on
-any error nothing is left behind and an existing ``out`` is untouched.
+The tree is built in a temporary folder beside ``out`` and swapped into place when complete; on
+any error nothing is left behind and an existing ``out`` is untouched. Each dataset is read from
+one version, held for the time it is copied (:func:`~.publish.reading`), so an export never
+mixes the files of two versions when the dataset is rewritten meanwhile. Datasets that are links
+to a version folder are exported as plain folders.
 """
 
 from __future__ import annotations
@@ -18,16 +21,17 @@ import html
 import json
 import os
 import shutil
-import tempfile
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Any
+from typing import Any, NoReturn
 from urllib.parse import quote, urlsplit
 
 from lanterna.errors import LanternaInputError
 from lanterna.manifests.validate import validate_manifest
 
-from .writer import publish, read_description
+from .output import json_text, write_errors
+from .publish import list_datasets, new_temp, reading, replace_folder, writing
+from .writer import read_description
 
 
 @dataclass
@@ -70,8 +74,7 @@ def find_datasets(source: Path) -> list[Path]:
         raise LanternaInputError(source, "not a folder (give a dataset folder or a data root)")
     if (source / "lanterna.json").is_file():
         return [source]
-    found = sorted(p.parent for p in source.glob("*/lanterna.json")
-                   if not p.parent.name.startswith("."))
+    found = list_datasets(source)
     if not found:
         raise LanternaInputError(source, "not a Lanterna dataset or data root (no lanterna.json "
                                  "in it or in its sub-folders)")
@@ -108,19 +111,24 @@ def export(source: Path, out: Path, base_url: str, *, force: bool = False,
     if viewer is not None and not (viewer / "index.html").is_file():
         raise LanternaInputError(viewer, "the viewer is not built (run `npm run build`)")
     report = ExportReport(out, base)
-    out.parent.mkdir(parents=True, exist_ok=True)
-    tmp = Path(tempfile.mkdtemp(prefix=f".{out.name}.tmp-", dir=out.parent))
-    try:
-        tmp.chmod(0o755)  # mkdtemp makes it private; the published tree is public
-        for folder in datasets:
-            _export_dataset(folder, tmp, base, report)
-        if viewer is not None:
-            shutil.copytree(viewer, tmp / "viewer")
-            (tmp / "index.html").write_text(_index_html(report))
-            report.viewer = f"{base}/viewer/"
-        publish(tmp, out)
-    finally:
-        shutil.rmtree(tmp, ignore_errors=True)
+    with write_errors(out):
+        out.parent.mkdir(parents=True, exist_ok=True)
+    with writing(out):
+        if out.exists() and not force:  # made by another export since the check above
+            raise LanternaInputError(out, "output exists (use --force to replace it)")
+        tmp = new_temp(out)
+        try:
+            with write_errors(out):
+                for folder in datasets:
+                    with reading(folder) as version:
+                        _export_dataset(folder, version, tmp, base, report)
+                if viewer is not None:
+                    shutil.copytree(viewer, tmp / "viewer")
+                    (tmp / "index.html").write_text(_index_html(report))
+                    report.viewer = f"{base}/viewer/"
+                replace_folder(tmp, out)
+        finally:
+            shutil.rmtree(tmp, ignore_errors=True)
     return report
 
 
@@ -134,21 +142,24 @@ def _check_output(source: Path, out: Path, force: bool) -> None:
         raise LanternaInputError(out, "output exists and is not a folder")
 
 
-def _export_dataset(folder: Path, tmp: Path, base: str, report: ExportReport) -> None:
-    desc = read_description(folder)
+def _export_dataset(folder: Path, version: Path, tmp: Path, base: str,
+                    report: ExportReport) -> None:
+    """Copy the dataset ``folder``, whose files are in ``version``, to ``tmp/NAME``."""
+    desc = read_description(version)
     name, old = str(desc.get("name", "")), str(desc.get("baseUrl", "")).rstrip("/")
     if not name or not old:
         raise LanternaInputError(folder / "lanterna.json", "has no name or baseUrl")
     if name in report.manifests:
         raise LanternaInputError(folder, f"two datasets are named {name!r}")
     target = tmp / name
-    for dirpath, _dirs, files in os.walk(folder):
+    for dirpath, _dirs, files in os.walk(version, onerror=_unreadable):
         here = Path(dirpath)
-        dest = target / here.relative_to(folder)
+        dest = target / here.relative_to(version)
         dest.mkdir(parents=True, exist_ok=True)
         for file in files:
             if file.endswith(".json"):
-                _rewrite_json(here / file, dest / file, old, base)
+                shown = report.out / name / here.relative_to(version) / file
+                _rewrite_json(here / file, dest / file, old, base, shown)
                 report.rewritten += 1
             elif _link_or_copy(here / file, dest / file):
                 report.linked += 1
@@ -162,14 +173,21 @@ def _export_dataset(folder: Path, tmp: Path, base: str, report: ExportReport) ->
     report.manifests[name] = str(manifest["id"])
 
 
-def _rewrite_json(src: Path, dst: Path, old: str, new: str) -> None:
-    text = src.read_text()
+def _unreadable(err: OSError) -> NoReturn:
+    raise LanternaInputError(err.filename, f"cannot read ({err.strerror})")
+
+
+def _rewrite_json(src: Path, dst: Path, old: str, new: str, shown: Path) -> None:
+    try:
+        text = src.read_text()
+    except OSError as err:
+        _unreadable(err)
     try:
         doc = json.loads(text)
     except ValueError as err:
         raise LanternaInputError(src, f"not valid JSON ({err})") from None
     ending = "\n" if text.endswith("\n") else ""
-    dst.write_text(json.dumps(rebase(doc, old, new), indent=2) + ending)
+    dst.write_text(json_text(rebase(doc, old, new), shown) + ending)
 
 
 def rebase(doc: Any, old: str, new: str) -> Any:

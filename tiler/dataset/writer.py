@@ -1,7 +1,9 @@
-"""Write a dataset folder atomically: images, layer service documents, lanterna.json, manifest.
+"""Write a dataset atomically: images, layer service documents, lanterna.json, manifest.
 
-Everything goes to a temporary folder beside the target, renamed into place only when complete,
-so a failure (bad input, a full disk, Ctrl-C) leaves nothing half-written.
+Everything goes to a temporary folder beside the target, published in one atomic step only when
+complete (:mod:`.publish`), so a failure (bad input, a full disk, Ctrl-C, ``kill -9``) leaves the
+previous dataset in place and nothing half-written. Writers hold the dataset's lock
+(:mod:`.lock`) from their first read to the publish, so two never overwrite each other's work.
 """
 
 from __future__ import annotations
@@ -10,9 +12,8 @@ import json
 import os
 import re
 import shutil
-import tempfile
 from collections.abc import Iterator
-from contextlib import contextmanager
+from contextlib import ExitStack, contextmanager
 from pathlib import Path
 from types import TracebackType
 from typing import Any
@@ -25,6 +26,9 @@ from lanterna.errors import LanternaInputError
 from lanterna.manifests.build import build_manifest
 from lanterna.tiler.iiif.pyramid import vips_from_array, write_pyramid
 from lanterna.tiler.iiif.tiff import write_tiff
+
+from .output import json_text, write_errors
+from .publish import new_temp, publish, writing
 
 DEFAULT_BASE_URL = "http://127.0.0.1:8000/datasets"
 RELIGHT_TYPE = "LanternaRelight"
@@ -72,14 +76,18 @@ class DatasetWriter:
         self.layers: list[dict[str, Any]] = []
         self._shared: dict[str, str] = {}
         self._tmp: Path | None = None
+        self._held = ExitStack()
 
     # -- context manager -------------------------------------------------------------------
     def __enter__(self) -> DatasetWriter:
-        if self.out.exists() and not self.force:
-            raise LanternaInputError(self.out, "output exists (use --force to replace it)")
-        self.out.parent.mkdir(parents=True, exist_ok=True)
-        self._tmp = Path(tempfile.mkdtemp(prefix=f".{self.out.name}.tmp-", dir=self.out.parent))
-        self._tmp.chmod(0o755)  # mkdtemp makes it private; the published dataset is public
+        with write_errors(self.out):
+            self.out.parent.mkdir(parents=True, exist_ok=True)
+        with ExitStack() as held:
+            held.enter_context(writing(self.out))
+            if self.out.exists() and not self.force:
+                raise LanternaInputError(self.out, "output exists (use --force to replace it)")
+            self._tmp = new_temp(self.out)
+            self._held = held.pop_all()  # the lock stays held until __exit__
         return self
 
     def __exit__(self, exc_type: type[BaseException] | None, exc: BaseException | None,
@@ -90,6 +98,7 @@ class DatasetWriter:
                 self._finish()
         finally:
             shutil.rmtree(self._tmp, ignore_errors=True)
+            self._held.close()
 
     # -- building --------------------------------------------------------------------------
     @property
@@ -120,17 +129,19 @@ class DatasetWriter:
             what = "the dataset is" if size is None else "expected"
             raise LanternaInputError(self.source, f"image {identifier} is {vimg.width}x"
                                      f"{vimg.height}, {what} {want_w}x{want_h}")
-        (self._tmp / "iiif").mkdir(exist_ok=True)
         service_id = f"{self.dataset_url}/iiif/{identifier}"
-        info = write_pyramid(vimg, self._tmp / "iiif" / identifier, service_id, fmt=fmt,
-                             tile_size=self.tile_size)
+        with write_errors(self.out):
+            (self._tmp / "iiif").mkdir(exist_ok=True)
+            info = write_pyramid(vimg, self._tmp / "iiif" / identifier, service_id, fmt=fmt,
+                                 tile_size=self.tile_size)
         self.images[identifier] = {"format": fmt, "width": vimg.width, "height": vimg.height,
                                    "bands": vimg.bands}
         if "maxWidth" in info:  # full/max is a reduced level (large images)
             self.images[identifier].update(maxWidth=info["maxWidth"], maxHeight=info["maxHeight"])
         if self.tiff:
-            (self._tmp / "tiff").mkdir(exist_ok=True)
-            write_tiff(vimg, self._tmp / "tiff" / f"{identifier}.tif", fmt=fmt)
+            with write_errors(self.out):
+                (self._tmp / "tiff").mkdir(exist_ok=True)
+                write_tiff(vimg, self._tmp / "tiff" / f"{identifier}.tif", fmt=fmt)
             self.images[identifier]["tiff"] = f"tiff/{identifier}.tif"
         if share_key is not None:
             self._shared[share_key] = identifier
@@ -181,51 +192,50 @@ class DatasetWriter:
         assert self._tmp is not None
         if not self.layers:
             raise ValueError("a dataset needs at least one layer")
-        write_documents(self._tmp, self.description())
-        publish(self._tmp, self.out)
+        with write_errors(self.out):
+            write_documents(self._tmp, self.description(), self.out)
+            publish(self._tmp, self.out)
 
 
-def write_documents(folder: Path, desc: dict[str, Any]) -> None:
-    """Write ``desc`` as ``layers/*.json``, ``lanterna.json`` and ``manifest.json`` in folder."""
+def write_documents(folder: Path, desc: dict[str, Any], out: Path) -> None:
+    """Write ``desc`` as ``layers/*.json``, ``lanterna.json`` and ``manifest.json`` in folder.
+
+    ``folder`` becomes the dataset ``out``: a number that is not finite is a one-line error
+    naming the file in ``out`` (see :func:`~.output.json_text`).
+    """
     (folder / "layers").mkdir(exist_ok=True)
     for layer in desc["layers"]:
-        _write_json(folder / "layers" / f"{layer['id']}.json", layer["service"])
-    _write_json(folder / "lanterna.json", desc)
-    _write_json(folder / "manifest.json", build_manifest(desc))
-
-
-def publish(tmp: Path, out: Path) -> None:
-    """Put the complete dataset folder ``tmp`` at ``out``, replacing what was there."""
-    if out.exists():
-        old = out.with_name(f".{out.name}.old-{tmp.name[-8:]}")
-        out.rename(old)
-        tmp.rename(out)
-        shutil.rmtree(old, ignore_errors=True)
-    else:
-        tmp.rename(out)
+        name = f"layers/{layer['id']}.json"
+        _write_json(folder / name, layer["service"], out / name)
+    _write_json(folder / "lanterna.json", desc, out / "lanterna.json")
+    _write_json(folder / "manifest.json", build_manifest(desc), out / "manifest.json")
 
 
 @contextmanager
 def rewriting(out: Path) -> Iterator[tuple[Path, dict[str, Any]]]:
     """Rewrite the existing dataset ``out`` atomically; yield ``(folder, description)``.
 
-    The dataset is copied into a temporary folder beside it (files hard-linked, so unchanged tiles
-    cost nothing; files are only ever replaced, never written through a link). The caller changes
-    the copy and the description in place; on a clean exit the documents (``lanterna.json``,
-    ``layers/*.json``, ``manifest.json``) are regenerated from the description and the copy
-    replaces ``out``. On an error the copy is removed and ``out`` is untouched.
+    Holds the dataset's lock throughout (callers that read the dataset before deciding what to
+    change take it first, with :func:`~.publish.writing`). The current version is copied into a
+    temporary folder beside it (files hard-linked, so unchanged tiles cost nothing; files are
+    only ever replaced, never written through a link). The caller changes the copy and the
+    description in place; on a clean exit the documents (``lanterna.json``, ``layers/*.json``,
+    ``manifest.json``) are regenerated from the description and the copy is published as the
+    next version. On an error the copy is removed and ``out`` is untouched.
     """
     out = Path(out)
-    desc = read_description(out)
-    tmp = Path(tempfile.mkdtemp(prefix=f".{out.name}.tmp-", dir=out.parent))
-    try:
-        tmp.chmod(0o755)
-        shutil.copytree(out, tmp, dirs_exist_ok=True, copy_function=_link_or_copy)
-        yield tmp, desc
-        write_documents(tmp, desc)
-        publish(tmp, out)
-    finally:
-        shutil.rmtree(tmp, ignore_errors=True)
+    with writing(out):
+        desc = read_description(out)
+        tmp = new_temp(out)
+        try:
+            with write_errors(out):
+                shutil.copytree(os.path.realpath(out), tmp, dirs_exist_ok=True,
+                                copy_function=_link_or_copy)
+                yield tmp, desc
+                write_documents(tmp, desc, out)
+                publish(tmp, out)
+        finally:
+            shutil.rmtree(tmp, ignore_errors=True)
 
 
 def read_description(dataset: Path) -> dict[str, Any]:
@@ -250,9 +260,9 @@ def _link_or_copy(src: str, dst: str) -> object:
     return dst
 
 
-def _write_json(path: Path, doc: dict[str, Any]) -> None:
+def _write_json(path: Path, doc: dict[str, Any], shown: Path) -> None:
     # Write a new file and rename it over the old one: ``path`` may be a hard link shared with
     # the published dataset (see ``rewriting``), which must not change.
     part = path.with_name(path.name + ".part")
-    part.write_text(json.dumps(doc, indent=2) + "\n")
+    part.write_text(json_text(doc, shown) + "\n")
     os.replace(part, path)

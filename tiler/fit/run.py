@@ -21,7 +21,9 @@ import numpy.typing as npt
 
 from lanterna.errors import LanternaInputError
 from lanterna.tiler.dataset.layers import add_planes_layer
+from lanterna.tiler.dataset.output import write_errors
 from lanterna.tiler.dataset.plan import LayerPlan, build_dataset
+from lanterna.tiler.dataset.publish import writing
 from lanterna.tiler.dataset.writer import DEFAULT_BASE_URL
 from lanterna.tiler.formats.planes import PlaneLayer
 from lanterna.tiler.inputs.lp import read_lp
@@ -130,11 +132,19 @@ def fit_sets(sets: Sequence[ImageSet], models: Sequence[str], out: Path, *,
         if len(fusion) != 3 or missing:
             raise LanternaInputError(None, f"--fusion {','.join(fusion)}: needs three of the "
                                      f"bands {', '.join(str(n) for n in names)}")
-    parent = Path(scratch) if scratch else Path(out).resolve().parent
-    parent.mkdir(parents=True, exist_ok=True)
+    out = Path(out)
+    parent = Path(scratch) if scratch else out.parent
+    with write_errors(out):
+        out.parent.mkdir(parents=True, exist_ok=True)
+        parent.mkdir(parents=True, exist_ok=True)
     with contextlib.ExitStack() as stack_:
-        tmp = stack_.enter_context(tempfile.TemporaryDirectory(prefix=".lanterna-fit-",
-                                                               dir=parent))
+        # the dataset's lock for the whole run, so that the scratch folder beside it (named as
+        # the dataset's temporary folders are) is cleared by the next write if this one is killed
+        stack_.enter_context(writing(out))
+        if out.exists() and not force:  # say so now, not after the fit
+            raise LanternaInputError(out, "output exists (use --force to replace it)")
+        tmp = stack_.enter_context(tempfile.TemporaryDirectory(
+            prefix=".lanterna-fit-" if scratch else f".{out.name}.tmp-", dir=parent))
         runner = stack_.enter_context(DaskRunner(scheduler)) if scheduler else None
         inputs = {s.name: _open_set(s, Path(tmp), progress) for s in sets}
         size = next(iter(inputs.values()))[0].shape[1:3]

@@ -93,6 +93,11 @@ def write_pyramid(
             full_max.start()
         try:
             image.dzsave(str(scratch / out_dir.name), id="http://lanterna.invalid", **save)
+        except pyvips.Error as err:
+            if full_max:
+                full_max.join()
+                raise full_max.with_detail_of(err) from None
+            raise
         finally:
             if full_max:
                 full_max.join()
@@ -126,7 +131,8 @@ def write_pyramid(
                 level = make()  # a fresh sequential read per file
                 assert level is not None
                 _save(level, target)
-    (out_dir / "info.json").write_text(json.dumps(info, indent=2))
+    # only integers and strings: allow_nan=False is a guard, never a user's error
+    (out_dir / "info.json").write_text(json.dumps(info, indent=2, allow_nan=False))
     return info
 
 
@@ -159,7 +165,20 @@ class _FullMax(threading.Thread):
             for target in self._files.values():
                 _render(self._image, req, target)
         except Exception as err:  # handed to the caller's thread by raise_error
-            self._error = err
+            # without its traceback: that holds this thread (a cycle) and the failed save's
+            # open file, which on a full disk would hold its space until the collector runs
+            self._error = err.with_traceback(None)
+
+    def with_detail_of(self, err: pyvips.Error) -> pyvips.Error:
+        """Return ``err`` (dzsave's) with this thread's error detail added, if it failed too.
+
+        libvips has one error buffer for all threads: when both saves fail (a full disk), the
+        reason may have gone into either error.
+        """
+        mine = self._error
+        if not isinstance(mine, pyvips.Error) or not mine.detail:
+            return err
+        return pyvips.Error(err.message, "\n".join(filter(None, [err.detail, mine.detail])))
 
     def raise_error(self) -> None:
         """Re-raise, in the calling thread, the error the thread stopped on (if any)."""

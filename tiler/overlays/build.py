@@ -21,6 +21,7 @@ from typing import Any
 import pyvips
 
 from lanterna.errors import LanternaInputError
+from lanterna.tiler.dataset.publish import writing
 from lanterna.tiler.dataset.writer import DatasetWriter, read_description, rewriting
 from lanterna.tiler.iiif.geometry import scale_factors
 from lanterna.tiler.iiif.pyramid import write_pyramid
@@ -30,7 +31,6 @@ from .composite import fit_level_image, load_rgba
 from .patches import levels_from_gimp, levels_from_patches, read_texts
 
 log = logging.getLogger("lanterna.overlays")
-
 
 
 class OverlayInputError(LanternaInputError):
@@ -88,6 +88,12 @@ def build_overlays(dataset_dir: Path, layer_id: str, *, patches_dir: Path | None
     if (patches_dir is None) == (gimp_dir is None):
         raise ValueError("give exactly one of patches_dir and gimp_dir")
     dataset_dir = Path(dataset_dir)
+    with writing(dataset_dir):  # from the first read to the publish: no lost update
+        return _build(dataset_dir, layer_id, patches_dir, gimp_dir, texts)
+
+
+def _build(dataset_dir: Path, layer_id: str, patches_dir: Path | None, gimp_dir: Path | None,
+           texts: Path | Mapping[Any, Any] | None) -> OverlayReport:
     desc = read_description(dataset_dir)
     layer = _find_layer(desc, layer_id, dataset_dir)
     width, height = int(desc["width"]), int(desc["height"])

@@ -6,6 +6,7 @@ from __future__ import annotations
 
 import re
 import select
+import shutil
 import signal
 import socket
 import subprocess
@@ -128,6 +129,17 @@ def test_the_built_in_server_says_what_it_is_without_the_werkzeug_banner(root: P
     assert "--workers N" in lines[2]
     for banner in ("development server", "WSGI server", "Running on", "CTRL+C", "Debug mode"):
         assert banner not in output
+
+
+def test_hidden_copies_of_a_dataset_are_not_listed(tmp_path: Path) -> None:
+    root = tmp_path / "root"
+    with DatasetWriter(root / "obj", name="obj", label="Object", width=30, height=20) as ds:
+        add_ptm_layer(ds, random_ptm_of_size(30, 20))
+    for stale in (".obj.old-20250101T000000_abcdef", ".obj.tmp-a1b2c3"):
+        shutil.copytree(root / "obj", root / stale)  # a half-deleted or killed writer's folder
+    _, output = _session(root)
+    assert [line.split(":")[0] for line in output.splitlines() if line.startswith("  ")] == [
+        "  obj"]
 
 
 def test_a_missing_viewer_is_one_warning(root: Path, tmp_path: Path,

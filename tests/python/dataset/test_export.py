@@ -9,15 +9,21 @@ from __future__ import annotations
 import hashlib
 import json
 import os
+import shutil
 from pathlib import Path
 from typing import Any
 
+import numpy as np
 import pytest
+import pyvips
 
 from lanterna.cli import main
+from lanterna.errors import LanternaInputError
 from lanterna.manifests.validate import validate_manifest
 from lanterna.tiler.dataset import export as export_mod
 from lanterna.tiler.dataset.export import export, rebase
+from lanterna.tiler.dataset.layers import add_image_layer
+from lanterna.tiler.dataset.writer import DatasetWriter
 from tests.python.fixtures.dataset_kinds import BASE, KINDS, build_kinds
 
 NEW = "https://cdn.example.net/iiif/v2"
@@ -211,8 +217,9 @@ def test_a_failure_half_way_leaves_nothing(root: Path, tmp_path: Path,
         return True
 
     monkeypatch.setattr(export_mod, "_link_or_copy", failing)
-    with pytest.raises(OSError, match="No space left"):
+    with pytest.raises(LanternaInputError) as err:
         export(root, out, NEW, force=True)
+    assert str(err.value) == f"{out}: cannot write (No space left on device); nothing was changed"
     assert len(calls) == 40
     assert [p.name for p in tmp_path.iterdir()] == ["out"]
     assert [p.name for p in out.iterdir()] == ["keep.txt"]
@@ -244,3 +251,50 @@ def test_files_are_copied_when_they_cannot_be_linked(root: Path, tmp_path: Path,
         dst = tmp_path / "d" / "svbrdf" / rel
         if not rel.endswith(".json"):
             assert dst.read_bytes() == src.read_bytes() and not os.path.samefile(src, dst)
+
+
+def _one_image(out: Path, label: str, value: int) -> None:
+    img = pyvips.Image.new_from_array(np.full((20, 30, 3), value, np.uint8))
+    with DatasetWriter(out, name=out.name, label=label, width=30, height=20, force=True) as ds:
+        add_image_layer(ds, img.copy(interpretation="srgb"), layer_id="pic", fmt="png")
+
+
+def test_leftovers_are_not_exported_and_linked_datasets_become_folders(tmp_path: Path) -> None:
+    data = tmp_path / "data"
+    _one_image(data / "obj", "current", 1)
+    stale = data / ".obj.old-20250101T000000_abcdef"
+    shutil.copytree(data / "obj", stale)  # a half-deleted previous version
+    (stale / "lanterna.json").write_text(
+        (stale / "lanterna.json").read_text().replace('"current"', '"stale"'))
+    site = tmp_path / "site"
+    report = export(data, site, NEW)
+    assert list(report.manifests) == ["obj"] and os.listdir(site) == ["obj"]
+    assert (data / "obj").is_symlink() and not (site / "obj").is_symlink()
+    assert json.loads((site / "obj/lanterna.json").read_text())["label"] == "current"
+    assert all(not p.is_symlink() for p in (site / "obj").rglob("*"))
+
+
+def test_an_export_reads_one_version_while_the_dataset_is_republished(
+        tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+    data = tmp_path / "data"
+    _one_image(data / "obj", "old", 1)
+    old = Path(os.path.realpath(data / "obj"))
+    real = export_mod._rewrite_json
+    republished: list[str] = []
+
+    def rewrite_then_republish(*args: Any) -> None:
+        real(*args)
+        if not republished:  # half-way through the export, someone rewrites the dataset
+            _one_image(data / "obj", "new", 2)
+            republished.append(os.readlink(data / "obj"))
+
+    monkeypatch.setattr(export_mod, "_rewrite_json", rewrite_then_republish)
+    export(data, tmp_path / "site", NEW)
+    assert republished and republished[0] != old.name
+    site = tmp_path / "site" / "obj"
+    assert json.loads((site / "lanterna.json").read_text())["label"] == "old"
+    assert {p.read_bytes() for p in site.rglob("*.png")} == {p.read_bytes()
+                                                             for p in old.rglob("*.png")}
+    assert old.is_dir()  # kept for the export, then swept by the next write
+    _one_image(data / "obj", "newer", 3)
+    assert not old.exists()

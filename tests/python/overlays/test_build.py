@@ -14,6 +14,7 @@ from lanterna.cli import main
 from lanterna.server.app import create_app
 from lanterna.tiler.overlays.build import build_overlays
 from tests.python.fixtures.overlays import BASE, H, W, make_dataset, patch, read_image
+from tests.python.fixtures.publishing import leftovers
 from tests.python.fixtures.sources import png
 
 PATCHES = {
@@ -190,7 +191,7 @@ def test_rebuild_replaces_the_overlay_and_removes_unused_images(tmp_path: Path) 
     assert [(e["level"], e["short"]) for e in levels] == [(1, ""), (2, "kept")]
     assert read_image(dataset, "vis_ov2")[0, 0].tolist() == [0, 0, 255, 255]
     assert tile.stat().st_ino == inode  # unchanged tiles are hard-linked, not copied
-    assert sorted(p.name for p in tmp_path.iterdir()) == ["a", "b", "obj"]
+    assert leftovers(tmp_path) == ["a", "b", "obj"]
 
 
 def test_gimp_levels_are_used_as_drawn(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:

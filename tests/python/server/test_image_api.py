@@ -73,7 +73,7 @@ def test_info_json(client: FlaskClient) -> None:
     assert info["id"] == f"http://localhost{BASE}"
     assert (info["type"], info["profile"], info["width"], info["height"]) == (
         "ImageService3", "level1", W, H)
-    assert (info["maxWidth"], info["maxHeight"], info["maxArea"]) == (16384, 16384, 16777216)
+    assert (info["maxWidth"], info["maxHeight"], info["maxArea"]) == (16383, 16383, 16777216)
     assert info["tiles"] == [{"width": 256, "height": 256, "scaleFactors": [1, 2, 4, 8]}]
     assert info["sizes"][-1] == {"width": W, "height": H} and info["sizes"][0]["width"] == 138
     assert info["preferredFormats"] == ["png"]

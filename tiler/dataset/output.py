@@ -1,0 +1,82 @@
+"""Output failures as one-line errors naming the output, and JSON with finite numbers only.
+
+A full disk, a read-only or foreign folder, or libvips failing to write a tile is the
+:class:`~lanterna.errors.LanternaInputError` ``OUT: cannot write (No space left on device);
+nothing was changed``, raised by :func:`write_errors` around the writer's own file operations
+(never around reading the sources, whose errors name the source). :func:`json_text` refuses
+``NaN`` and infinities, which ``json.dumps`` would write as ``NaN``/``Infinity`` (not JSON: the
+viewer's ``JSON.parse`` rejects the document), naming the file and the first such value.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+import re
+from collections.abc import Iterator
+from contextlib import contextmanager
+from pathlib import Path
+from typing import Any
+
+import pyvips
+
+from lanterna.errors import LanternaInputError
+
+_SYSTEM_ERROR = re.compile(r"system error: (.+)")
+
+
+def write_error(out: Path, err: OSError | pyvips.Error) -> LanternaInputError:
+    """Return the one-line error for failing to write the output ``out``."""
+    return LanternaInputError(out, f"cannot write ({failure_reason(err)}); nothing was changed")
+
+
+def failure_reason(err: OSError | pyvips.Error) -> str:
+    """Say in a few words why a write failed: the OS's reason, or libvips's first one."""
+    if isinstance(err, OSError):
+        return err.strerror or str(err) or type(err).__name__
+    lines = [line.strip() for line in str(err).splitlines() if line.strip()]
+    for line in lines:  # libvips passes the OS's reason on as "system error: …"
+        m = _SYSTEM_ERROR.match(line)
+        if m and not m.group(1).startswith("Unknown error"):
+            return m.group(1)
+    detail = lines[1] if len(lines) > 1 else (lines[0] if lines else "libvips failed")
+    return detail[:200]
+
+
+@contextmanager
+def write_errors(out: Path) -> Iterator[None]:
+    """Turn an ``OSError`` or ``pyvips.Error`` raised inside into :func:`write_error`."""
+    try:
+        yield
+    except (OSError, pyvips.Error) as err:
+        raise write_error(out, err) from None
+
+
+def json_text(doc: Any, path: Path) -> str:
+    """Return ``doc`` as indented JSON, or raise naming ``path`` if a number is not finite."""
+    try:
+        return json.dumps(doc, indent=2, allow_nan=False)
+    except ValueError:
+        where = non_finite(doc)
+        if where is None:
+            raise
+        raise LanternaInputError(path, f"cannot write: {where[0] or 'the document'} is "
+                                 f"{where[1]} (JSON has no NaN or infinity)") from None
+
+
+def non_finite(doc: Any, where: str = "") -> tuple[str, float] | None:
+    """Return ``(json path, value)`` of the first non-finite number in ``doc``, if any."""
+    if isinstance(doc, float) and not math.isfinite(doc):
+        return where, doc
+    items: Iterator[tuple[str, Any]]
+    if isinstance(doc, dict):
+        items = ((f"{where}.{key}" if where else str(key), value) for key, value in doc.items())
+    elif isinstance(doc, list | tuple):
+        items = ((f"{where}[{i}]", value) for i, value in enumerate(doc))
+    else:
+        return None
+    for inner, value in items:
+        found = non_finite(value, inner)
+        if found is not None:
+            return found
+    return None
