@@ -78,6 +78,7 @@ export class TileFailures {
     for (const tile of this.#failed.keys()) {
       this.#rounds.set(tile, limit);
     }
+    this.#cancel();
     this.#revive([...this.#failed.keys()]);
   }
 

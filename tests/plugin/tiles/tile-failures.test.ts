@@ -52,6 +52,18 @@ describe('TileFailures', () => {
     expect(fake.updates()).toBe(3);
   });
 
+  it('says it is retrying only while an automatic retry is due', () => {
+    const fake = fakeViewer();
+    const failures = new TileFailures(fake.viewer, { onChange: () => undefined });
+    const tile = { exists: false };
+    fake.raise('tile-load-failed', { tile, tiledImage: item(), message: 'm' });
+    expect(failures.state().retrying).toBe(true);
+    failures.retry(); // by hand: no more automatic retries for it
+    tile.exists = false;
+    fake.raise('tile-load-failed', { tile, tiledImage: item(), message: 'm' });
+    expect(failures.state()).toMatchObject({ count: 1, retrying: false });
+  });
+
   it('stops listening when destroyed', () => {
     const fake = fakeViewer();
     const failures = new TileFailures(fake.viewer, { onChange: () => undefined });
