@@ -76,6 +76,9 @@ export function createViewer(options: CreateViewerOptions): LanternaViewer {
   // Above the light widget (12 px from the bottom, 96 px high), if there is one.
   const notices = new ViewerNotices(viewer, { show: options.notices !== false, bottom: widget ? 120 : 12, onChange: notify });
   const reportError = (error: unknown): void => {
+    if (destroyed) {
+      return; // e.g. an item that was still opening
+    }
     console.warn('[lanterna]', error);
     notices.reportError(error);
   };
