@@ -49,6 +49,7 @@ ROUTES = [
 ALLOWED = [r"^Failed to load resource", r"^Tile .* failed to load"]
 NOTICE_TEXT = "Some tiles could not be loaded (3)"
 RETRY = '.lanterna-notice[data-kind="tiles-failed"] .lanterna-notice-action'
+DRAG_FROM = (150, 360)  # in a 640×480 view: on the notice's text, left of the panel
 
 
 def on_screen(x: int, y: int) -> tuple[slice, slice]:
@@ -147,3 +148,18 @@ def test_tiles_that_come_back_are_loaded_by_the_automatic_retry(
     assert_close(back, expected, everywhere, "after the automatic retry")
     assert shots[1].meta()["notices"]["list"] == []
     assert np.abs(failed[rows, cols, :3].astype(np.int16) - expected[rows, cols]).max() > 2
+
+
+def test_the_notice_does_not_block_the_viewer(noisy: Dataset, tmp_path: Path) -> None:
+    # A drag that starts on the notice's text moves the light, as anywhere on the image.
+    view = (120, 100, 640, 480)
+    shots = [LensShot(LIGHT, view, tmp_path / "failed.rgba", layer="base"),
+             LensShot(LIGHT, view, tmp_path / "dragged.rgba", gestures=[
+                 {"type": "mouse", "from": list(DRAG_FROM), "to": [600, 40]}])]
+    routes = [tile_route(PLANES, *MISSING["A"], status=404)]
+    shots_and_frames(noisy, shots, viewport=(640, 480), options=options(tmp_path, routes))
+    failed, dragged = (s.meta() for s in shots)
+    x, y, w, h = failed["notices"]["rect"]
+    assert x <= DRAG_FROM[0] <= x + w and y <= DRAG_FROM[1] <= y + h, failed["notices"]
+    light = dragged["light"]
+    assert (light["lu"], light["lv"]) != pytest.approx(LIGHT, abs=0.05), light
