@@ -17,16 +17,8 @@ import numpy as np
 import numpy.typing as npt
 import pytest
 
-from tests.python.fixtures.lens import (
-    LIGHT,
-    VIEW,
-    Dataset,
-    LensShot,
-    assert_close,
-    reference,
-    region,
-    shots_and_frames,
-)
+from tests.python.fixtures import lens
+from tests.python.fixtures.lens import Dataset, LensShot
 
 pytestmark = pytest.mark.browser
 
@@ -47,11 +39,11 @@ CASES: dict[str, dict[str, object]] = {
 def restored(lens_dataset: Dataset) -> Iterator[dict[str, tuple[LensShot, npt.NDArray[np.uint8]]]]:
     out = lens_dataset.root / "context"
     out.mkdir()
-    shots = [LensShot(LIGHT, region(1), out / f"{name}.rgba", layer="base",
+    shots = [LensShot(lens.LIGHT, lens.region(1), out / f"{name}.rgba", layer="base",
                       extra={"contextLoss": True, "lostScreenshot": str(out / f"{name}-lost.png")},
                       **case)  # type: ignore[arg-type]
              for name, case in CASES.items()]
-    frames = shots_and_frames(lens_dataset, shots)
+    frames = lens.shots_and_frames(lens_dataset, shots)
     yield {name: (shot, frame) for name, shot, frame in zip(CASES, shots, frames, strict=True)}
 
 
@@ -60,7 +52,7 @@ def test_the_restored_context_redraws_the_same_pixels(
         restored: dict[str, tuple[LensShot, npt.NDArray[np.uint8]]], name: str) -> None:
     shot, before = restored[name]
     after = shot.restored()
-    assert before.shape == after.shape == (VIEW[1], VIEW[0], 4)
+    assert before.shape == after.shape == (lens.VIEW[1], lens.VIEW[0], 4)
     assert (before[..., 3] == 255).all(), "the frame before the loss must be drawn"
     differ = np.argwhere((before != after).any(axis=-1))
     assert differ.size == 0, (
@@ -72,8 +64,8 @@ def test_the_frame_before_the_loss_is_the_reference(
         lens_dataset: Dataset, restored: dict[str, tuple[LensShot, npt.NDArray[np.uint8]]]) -> None:
     # The comparison above is meaningful only for a correct frame: check one against numpy.
     _shot, frame = restored["ptm-color"]
-    expected = np.round(reference(lens_dataset, "base", 1) * 255).astype(np.int16)
-    assert_close(frame, expected, np.ones(frame.shape[:2], bool), "ptm colour before the loss")
+    expected = np.round(lens.reference(lens_dataset, "base", 1) * 255).astype(np.int16)
+    lens.assert_close(frame, expected, np.ones(frame.shape[:2], bool), "ptm colour before the loss")
 
 
 @pytest.mark.parametrize("name", list(CASES))

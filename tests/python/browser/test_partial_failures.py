@@ -15,15 +15,8 @@ import numpy as np
 import numpy.typing as npt
 import pytest
 
-from tests.python.fixtures.lens import (
-    LIGHT,
-    Dataset,
-    LensShot,
-    assert_close,
-    reference,
-    region,
-    shots_and_frames,
-)
+from tests.python.fixtures import lens
+from tests.python.fixtures.lens import Dataset, LensShot
 
 pytestmark = pytest.mark.browser
 
@@ -36,15 +29,15 @@ def partial(lens_dataset: Dataset) -> Iterator[list[tuple[LensShot, npt.NDArray[
     out = lens_dataset.root / "partial"
     out.mkdir()
     shots = [
-        LensShot(LIGHT, region(1), out / "overlay.rgba", layer="base", overlays=True),
-        LensShot(LIGHT, region(1), out / "switch.rgba", extra={"read": [LAYER_MENU]}, gestures=[
-            {"type": "select", "selector": LAYER_MENU, "value": "second"},
-            {"type": "wait", "ms": 500}]),
-        LensShot(LIGHT, region(1), out / "lens.rgba",
+        LensShot(lens.LIGHT, lens.region(1), out / "overlay.rgba", layer="base", overlays=True),
+        LensShot(lens.LIGHT, lens.region(1), out / "switch.rgba", extra={"read": [LAYER_MENU]},
+                 gestures=[{"type": "select", "selector": LAYER_MENU, "value": "second"},
+                           {"type": "wait", "ms": 500}]),
+        LensShot(lens.LIGHT, lens.region(1), out / "lens.rgba",
                  lens={"enabled": True, "layer": "second", "center": [128, 96], "radius": 50}),
     ]
     options = {"routes": ROUTES, "allowConsoleErrors": [r"^Failed to load resource"]}
-    frames = shots_and_frames(lens_dataset, shots, options=options)
+    frames = lens.shots_and_frames(lens_dataset, shots, options=options)
     yield list(zip(shots, frames, strict=True))
 
 
@@ -54,10 +47,10 @@ def errors(shot: LensShot) -> list[str]:
 
 def test_the_view_keeps_showing_the_layer_that_loaded(
         lens_dataset: Dataset, partial: list[tuple[LensShot, npt.NDArray[np.uint8]]]) -> None:
-    expected = np.round(reference(lens_dataset, "base", 1) * 255).astype(np.int16)
+    expected = np.round(lens.reference(lens_dataset, "base", 1) * 255).astype(np.int16)
     everywhere = np.ones(expected.shape[:2], bool)
     for shot, frame in partial:
-        assert_close(frame, expected, everywhere, f"{shot.out.name}: base without its overlay")
+        lens.assert_close(frame, expected, everywhere, f"{shot.out.name}: base without its overlay")
 
 
 def test_each_failure_is_an_error_notice_naming_the_url(
