@@ -5,9 +5,10 @@ pixel) over four level-0 tiles whose requests are faulted (render.mjs ``routes``
 
 - A, every plane answers 404; B, one plane of three answers 404 (the bundle fails as a whole);
 - C, one plane never answers (OpenSeadragon's time limit, set to 2.5 s, passes);
-- D, one plane answers 500 once (the plane is retried on its own, and the tile loads).
+- D, one plane answers 500 once (the plane is retried on its own, and the tile loads);
+- E, one plane answers 200 with bytes that are not an image (not retried).
 
-Where A, B and C are missing the frame must be the level-1 tile there, upsampled and relit
+Where A, B, C and E are missing the frame must be the level-1 tile there, upsampled and relit
 (:func:`tests.python.fixtures.faults.coarse_reference`); everywhere else the level-0 reference.
 """
 
@@ -38,16 +39,17 @@ from tests.python.fixtures.lens import (
 pytestmark = pytest.mark.browser
 
 PLANES = "base_c0|base_c1|base_color"
-MISSING = {"A": (128, 128), "B": (256, 128), "C": (128, 256)}  # level-0 tile origins
+MISSING = {"A": (128, 128), "B": (256, 128), "C": (128, 256), "E": (128, 0)}  # level-0 origins
 RETRIED = (256, 256)
 ROUTES = [
     tile_route(PLANES, *MISSING["A"], status=404, body="no such tile"),
     tile_route("base_c1", *MISSING["B"], status=404, body="no such tile"),
     tile_route("base_color", *MISSING["C"], hang=True),
     tile_route("base_c0", *RETRIED, status=500, body="try again", times=1),
+    tile_route("base_c0", *MISSING["E"], status=200, body="not a png", contentType="image/png"),
 ]
 ALLOWED = [r"^Failed to load resource", r"^Tile .* failed to load"]
-NOTICE_TEXT = "Some tiles could not be loaded (3)"
+NOTICE_TEXT = "Some tiles could not be loaded (4)"
 RETRY = '.lanterna-notice[data-kind="tiles-failed"] .lanterna-notice-action'
 DRAG_FROM = (150, 360)  # in a 640×480 view: on the notice's text, left of the panel
 
@@ -115,16 +117,17 @@ def test_the_notice_is_visible_and_counts_the_missing_tiles(
     assert any(NOTICE_TEXT in t for t in notices["texts"]), notices["texts"]
     [notice] = notices["list"]
     assert notice["kind"] == "tiles-failed"
-    # The detail names the last failure: a URL and why (404, no answer within the time limit).
+    # The detail names the last failure: a URL and why (404, no answer in time, not an image).
     assert "/iiif/base_" in notice["detail"]
-    assert "HTTP 404" in notice["detail"] or "no answer" in notice["detail"]
+    reasons = ("HTTP 404", "no answer", "not a decodable image")
+    assert any(why in notice["detail"] for why in reasons), notice["detail"]
 
 
 def test_retry_asks_for_the_failed_tiles_again(
         faulted: tuple[list[LensShot], list[npt.NDArray[np.uint8]]]) -> None:
     first, retried = (s.meta() for s in faulted[0])
-    # A: 3 planes, B: 1, C: 1 (the one that never answers), D: 1 (then the server answers)
-    assert first["routeHits"][:2] == [3, 1] and first["routeHits"][3] == 1
+    # A: 3 planes, B: 1, C: 1 (the one that never answers), D: 1 (then the server answers), E: 1
+    assert first["routeHits"][:2] == [3, 1] and first["routeHits"][3:] == [1, 1]
     assert first["routeHits"][2] >= 1
     assert retried["routeHits"][0] > first["routeHits"][0], "Retry must request tile A again"
     assert retried["routeHits"][1] > first["routeHits"][1], "Retry must request tile B again"
