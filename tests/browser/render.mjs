@@ -18,14 +18,27 @@
 // short line; `requests`: the URLs the page requested during the shot). One JSON line per shot goes to stdout. Exits non-zero on a page error, a console
 // error, or a step taking longer than timeoutMs (default 60 s).
 //
-// Gesture steps (x, y in CSS px of the viewer element; `steps` intermediate moves, default 8):
-//   {"type": "touch", "from": [[x, y], ...], "to": [[x, y], ...], "steps": 8}  (1 or 2 fingers, CDP)
-//   {"type": "mouse", "from": [x, y], "to": [x, y], "steps": 8, "button": "left"}  (press, drag, release)
-//   {"type": "pen", "from": [x, y], "to": [x, y], "steps": 8}  (a pen drag, CDP pointerType "pen")
-//   {"type": "wheel", "at": [x, y], "deltaY": -100}
+// More spec keys (all optional):
+//   "routes": [{"match": "regex", "status": 404} | {"match": …, "hang": true} | {"match": …, "abort": "failed"}]
+//       answer matching requests with a fault instead of the server (see page-actions.mjs)
+//   "allowConsoleErrors": ["regex", …]  console errors matching one of these do not fail the run
+//   "expectReady": "reject"  the page is expected not to open the dataset: no shots; the error box is read
+//   "result": "/abs/result.json"  {readyError, errorBox, notices, routeHits, consoleErrors, pageErrors}
+//   "mobile": true  a phone-like context (hasTouch, isMobile)
+//   "tileTimeoutMs": 3000  OpenSeadragon's tile time limit from then on (viewer.imageLoader.timeout)
+//   "launchArgs": ["--flag", …]  extra Chromium flags
+// More shot keys: "contextLoss": true (after the frame is read: lose the WebGL context, check the
+// page while lost, restore it, wait until loaded and read the frame again into `out + ".restored"`),
+// "screenshot" (a PNG after the shot), "lostScreenshot" (a PNG while the context is lost), "read"
+// (CSS selectors of form controls whose values go to the shot's JSON as `values`). The shot's
+// JSON also holds `notices` (the notice box: visible, rect, texts, and lanterna.getNotices()),
+// `routeHits` (requests caught by each route so far) and, with contextLoss, `noticesWhileLost`.
+//
+// Gesture steps: see page-actions.mjs (touch, mouse, pen, wheel, click, wait).
 import { readFileSync, writeFileSync } from 'node:fs';
 import process from 'node:process';
 import { chromium } from 'playwright-core';
+import { GESTURE_TYPES, installRoutes, loseAndRestoreContext, readNotices, runGesture } from './page-actions.mjs';
 
 const CHROMIUM = process.env.LANTERNA_CHROMIUM ?? '/usr/bin/chromium';
 const ARGS = [
@@ -63,62 +76,18 @@ function readSpec(path) {
       throw new RenderError(`${path}: shot ${i}: overlays must be a boolean, lens an object, gestures a list`);
     }
     for (const g of s.gestures ?? []) {
-      if (!['touch', 'mouse', 'pen', 'wheel'].includes(g?.type)) {
-        throw new RenderError(`${path}: shot ${i}: gesture type must be touch, mouse, pen or wheel, got ${JSON.stringify(g)}`);
+      if (!GESTURE_TYPES.includes(g?.type)) {
+        throw new RenderError(`${path}: shot ${i}: gesture type must be one of ${GESTURE_TYPES.join(', ')}, `
+          + `got ${JSON.stringify(g)}`);
       }
     }
   }
-  return spec;
-}
-
-function lerp(a, b, t) {
-  return a + (b - a) * t;
-}
-
-/** Run one synthetic input step; (x, y) are CSS px of the viewer element at `origin`. */
-async function runGesture(page, cdp, origin, g) {
-  const steps = g.steps ?? 8;
-  const at = ([x, y]) => ({ x: origin.x + x, y: origin.y + y });
-  if (g.type === 'touch') {
-    const to = g.to ?? g.from;
-    const points = (t) => g.from.map((p, id) => {
-      const q = to[id] ?? p;
-      return { ...at([lerp(p[0], q[0], t), lerp(p[1], q[1], t)]), id };
-    });
-    await cdp.send('Input.dispatchTouchEvent', { type: 'touchStart', touchPoints: points(0) });
-    for (let k = 1; k <= steps; k++) {
-      await cdp.send('Input.dispatchTouchEvent', { type: 'touchMove', touchPoints: points(k / steps) });
-      await page.evaluate(() => new Promise((r) => { requestAnimationFrame(() => r()); }));
+  for (const r of spec.routes ?? []) {
+    if (typeof r?.match !== 'string') {
+      throw new RenderError(`${path}: every route needs a "match" regex, got ${JSON.stringify(r)}`);
     }
-    await cdp.send('Input.dispatchTouchEvent', { type: 'touchEnd', touchPoints: [] });
-  } else if (g.type === 'pen') {
-    const from = at(g.from);
-    const to = at(g.to ?? g.from);
-    const pen = (type, p, buttons) => cdp.send('Input.dispatchMouseEvent', {
-      type, x: p.x, y: p.y, button: 'left', buttons, clickCount: 1, pointerType: 'pen',
-    });
-    await pen('mousePressed', from, 1);
-    for (let k = 1; k <= steps; k++) {
-      await pen('mouseMoved', { x: lerp(from.x, to.x, k / steps), y: lerp(from.y, to.y, k / steps) }, 1);
-      await page.evaluate(() => new Promise((r) => { requestAnimationFrame(() => r()); }));
-    }
-    await pen('mouseReleased', to, 0);
-  } else if (g.type === 'mouse') {
-    const from = at(g.from);
-    const to = at(g.to ?? g.from);
-    await page.mouse.move(from.x, from.y);
-    await page.mouse.down({ button: g.button ?? 'left' });
-    for (let k = 1; k <= steps; k++) {
-      await page.mouse.move(lerp(from.x, to.x, k / steps), lerp(from.y, to.y, k / steps));
-      await page.evaluate(() => new Promise((r) => { requestAnimationFrame(() => r()); }));
-    }
-    await page.mouse.up({ button: g.button ?? 'left' });
-  } else {
-    const p = at(g.at);
-    await page.mouse.move(p.x, p.y);
-    await page.mouse.wheel(0, g.deltaY ?? -100);
   }
-  await page.evaluate(() => new Promise((r) => { requestAnimationFrame(() => r()); }));
+  return spec;
 }
 
 /** Reject after `ms` with a clear message, unless `promise` settles first. */
@@ -130,25 +99,89 @@ function withTimeout(promise, ms, what) {
   return Promise.race([promise, timeout]).finally(() => clearTimeout(timer));
 }
 
+/** Wait until every tile is loaded and drawn, then read the frame back (and the viewer's state). */
+function readFrame(page) {
+  return page.evaluate(async () => {
+    const l = window.lanterna;
+    await l.whenFullyLoaded();
+    const { width, height, data } = l.readPixels();
+    let binary = '';
+    const chunk = 0x8000;
+    for (let i = 0; i < data.length; i += chunk) {
+      binary += String.fromCharCode.apply(null, data.subarray(i, i + chunk));
+    }
+    const center = l.viewer.viewport.getCenter(true);
+    return {
+      width, height, base64: btoa(binary), layer: l.getActiveLayer(), mode: l.getRenderMode(),
+      overlayState: l.getOverlayState?.() ?? null, lens: l.getLens?.() ?? null, light: l.getLight(),
+      view: { center: [center.x, center.y], zoom: l.viewer.viewport.getZoom(true) },
+      hypertext: document.querySelector('.lanterna-hypertext-short')?.textContent ?? null,
+    };
+  });
+}
+
+/** A frame's RGBA bytes, checked against its size. */
+function frameBytes(frame, what) {
+  const bytes = Buffer.from(frame.base64, 'base64');
+  if (bytes.length !== frame.width * frame.height * 4) {
+    throw new RenderError(`shot ${what}: got ${bytes.length} bytes for ${frame.width}×${frame.height}`);
+  }
+  return bytes;
+}
+
+/** Wait for the page's error box; returns it and, if the viewer was made, how `ready` rejected. */
+async function readOpenError(page) {
+  await page.waitForFunction(() => {
+    const box = document.getElementById('error');
+    return box !== null && !box.hidden;
+  });
+  return page.evaluate(async () => {
+    const box = document.getElementById('error');
+    const readyError = window.lanterna
+      ? await window.lanterna.ready.then(() => null, (e) => ({ name: e?.name, message: e?.message }))
+      : null;
+    const text = (sel) => box.querySelector(sel)?.textContent ?? null;
+    const r = box.getBoundingClientRect();
+    return {
+      readyError,
+      errorBox: {
+        visible: !box.hidden && r.width > 0 && r.height > 0, text: box.textContent,
+        title: text('h2'), problem: text('.problem'), url: text('.url code'), hint: text('.hint'),
+        rect: [r.left, r.top, r.width, r.height], scrollWidth: box.scrollWidth, clientWidth: box.clientWidth,
+      },
+    };
+  });
+}
+
 async function main() {
   const spec = readSpec(process.argv[2]);
   const timeoutMs = spec.timeoutMs ?? 60000;
   const viewport = { width: spec.viewport?.width ?? 640, height: spec.viewport?.height ?? 480 };
-  const browser = await chromium.launch({ executablePath: CHROMIUM, args: ARGS, headless: true });
+  const browser = await chromium.launch({
+    executablePath: CHROMIUM, args: [...ARGS, ...(spec.launchArgs ?? [])], headless: true,
+  });
   const pageErrors = [];
+  const consoleErrors = [];
+  const allowed = (spec.allowConsoleErrors ?? []).map((p) => new RegExp(p));
   let failure = null;
   try {
     const uses = (type) => spec.shots.some((s) => (s.gestures ?? []).some((g) => g.type === type));
-    const touch = uses('touch');
-    const context = await browser.newContext({ viewport, deviceScaleFactor: 1, ...(touch ? { hasTouch: true } : {}) });
+    const touch = uses('touch') || spec.mobile === true;
+    const context = await browser.newContext({
+      viewport, deviceScaleFactor: 1, ...(touch ? { hasTouch: true } : {}), ...(spec.mobile ? { isMobile: true } : {}),
+    });
     const page = await context.newPage();
     const cdp = touch || uses('pen') ? await context.newCDPSession(page) : null;
+    const routeHits = await installRoutes(page, spec.routes ?? []);
     let requests = [];
     page.on('request', (req) => { requests.push(req.url()); });
     page.on('pageerror', (err) => pageErrors.push(`page error: ${err.message}`));
     page.on('console', (msg) => {
       if (msg.type() === 'error') {
-        pageErrors.push(`console error: ${msg.text()}`);
+        consoleErrors.push(msg.text());
+        if (!allowed.some((re) => re.test(msg.text()))) {
+          pageErrors.push(`console error: ${msg.text()}`);
+        }
       }
     });
     const check = () => {
@@ -156,10 +189,31 @@ async function main() {
         throw new RenderError(pageErrors.join('\n'));
       }
     };
+    const writeResult = async (extra) => {
+      if (spec.result) {
+        writeFileSync(spec.result, JSON.stringify({
+          ...extra, notices: await readNotices(page), routeHits, consoleErrors, pageErrors,
+        }));
+      }
+    };
     await withTimeout(page.goto(spec.url, { waitUntil: 'load' }), timeoutMs, `loading ${spec.url}`);
+    if (spec.expectReady === 'reject') {
+      const opened = await withTimeout(readOpenError(page), timeoutMs, 'waiting for the error message');
+      // Give late errors (unhandled rejections, errors in handlers) a moment to show up.
+      await page.waitForTimeout(300);
+      if (spec.screenshot) {
+        await page.screenshot({ path: spec.screenshot });
+      }
+      await writeResult(opened);
+      check();
+      return;
+    }
     await withTimeout(page.waitForFunction(() => window.lanterna !== undefined), timeoutMs,
       'waiting for window.lanterna');
     await withTimeout(page.evaluate(() => window.lanterna.ready), timeoutMs, 'waiting for lanterna.ready');
+    if (spec.tileTimeoutMs !== undefined) {
+      await page.evaluate((ms) => { window.lanterna.viewer.imageLoader.timeout = ms; }, spec.tileTimeoutMs);
+    }
     check();
     for (const shot of spec.shots) {
       requests = [];
@@ -192,36 +246,31 @@ async function main() {
           return { x: r.left, y: r.top };
         });
         for (const g of shot.gestures) {
-          await withTimeout(runGesture(page, cdp, box, g), timeoutMs, `gesture ${JSON.stringify(g)}`);
+          await withTimeout(runGesture(page, cdp, box, g, touch), timeoutMs, `gesture ${JSON.stringify(g)}`);
         }
         check();
       }
-      const result = await withTimeout(page.evaluate(async () => {
-        const l = window.lanterna;
-        await l.whenFullyLoaded();
-        const { width, height, data } = l.readPixels();
-        let binary = '';
-        const chunk = 0x8000;
-        for (let i = 0; i < data.length; i += chunk) {
-          binary += String.fromCharCode.apply(null, data.subarray(i, i + chunk));
-        }
-        const center = l.viewer.viewport.getCenter(true);
-        return {
-          width, height, base64: btoa(binary), layer: l.getActiveLayer(), mode: l.getRenderMode(),
-          overlayState: l.getOverlayState?.() ?? null, lens: l.getLens?.() ?? null, light: l.getLight(),
-          view: { center: [center.x, center.y], zoom: l.viewer.viewport.getZoom(true) },
-          hypertext: document.querySelector('.lanterna-hypertext-short')?.textContent ?? null,
-        };
-      }), timeoutMs, `shot ${JSON.stringify(shot)}`);
+      const result = await withTimeout(readFrame(page), timeoutMs, `shot ${JSON.stringify(shot)}`);
       check();
-      const bytes = Buffer.from(result.base64, 'base64');
-      if (bytes.length !== result.width * result.height * 4) {
-        throw new RenderError(`shot ${shot.out}: got ${bytes.length} bytes for ${result.width}×${result.height}`);
+      const extra = {};
+      if (shot.contextLoss) {
+        extra.noticesWhileLost = await withTimeout(loseAndRestoreContext(page, shot.lostScreenshot), timeoutMs,
+          'losing and restoring the WebGL context');
+        const restored = await withTimeout(readFrame(page), timeoutMs, 'the frame after the restoration');
+        check();
+        writeFileSync(`${shot.out}.restored`, frameBytes(restored, shot.out));
       }
-      writeFileSync(shot.out, bytes);
+      writeFileSync(shot.out, frameBytes(result, shot.out));
+      const notices = await readNotices(page);
+      const values = await page.evaluate((selectors) => Object.fromEntries(selectors.map((sel) => [
+        sel, document.querySelector(sel)?.value ?? null])), shot.read ?? []);
+      if (shot.screenshot) {
+        await withTimeout(page.screenshot({ path: shot.screenshot }), timeoutMs, 'screenshot');
+      }
       writeFileSync(`${shot.out}.json`, JSON.stringify({
         width: result.width, height: result.height, overlayState: result.overlayState, lens: result.lens,
-        light: result.light, view: result.view, hypertext: result.hypertext, requests,
+        light: result.light, view: result.view, hypertext: result.hypertext, requests, notices,
+        routeHits: [...routeHits], values, ...extra,
       }));
       process.stdout.write(`${JSON.stringify({
         out: shot.out, width: result.width, height: result.height, light: shot.light, region: shot.region,
@@ -231,6 +280,7 @@ async function main() {
     if (spec.screenshot) {
       await withTimeout(page.screenshot({ path: spec.screenshot }), timeoutMs, 'screenshot');
     }
+    await writeResult({});
     check();
   } catch (error) {
     failure = error;

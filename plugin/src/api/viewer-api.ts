@@ -38,6 +38,23 @@ export interface CreateViewerOptions {
   osd?: Partial<OpenSeadragon.Options>;
   /** `fetch` options for the manifest and info.json requests. */
   fetchInit?: RequestInit;
+  /**
+   * Show notices over the viewer: the graphics context is lost, some tiles could not be loaded, an
+   * error after `ready` (see {@link LanternaViewer.getNotices}). @default true
+   */
+  notices?: boolean;
+}
+
+/** What a notice is about. */
+export type NoticeKind = 'context-lost' | 'tiles-failed' | 'error';
+
+/** A non-blocking message about the viewer's state, as {@link LanternaViewer.getNotices} lists it. */
+export interface Notice {
+  readonly kind: NoticeKind;
+  /** The short text shown over the viewer. */
+  readonly message: string;
+  /** More about it: the failed URL and why, or the error's name. */
+  readonly detail: string;
 }
 
 /** A layer as listed by {@link LanternaViewer.getLayers}. */
@@ -109,7 +126,23 @@ export interface LanternaViewer {
   setLens(update: LensUpdate): Promise<void>;
   /** The lens (`layer` resolved to an id). */
   getLens(): LensState;
-  /** Call `listener` after any change of light, layer, mode, parameters, lens, overlays or level; returns an unsubscribe function. */
+  /**
+   * The notices shown now, oldest first: `context-lost` while the WebGL context is lost,
+   * `tiles-failed` while tiles of the view could not be loaded (a coarser level is drawn there), and
+   * `error` for errors after `ready` (a lens or overlay layer that could not be opened, a frame that
+   * could not be drawn, or one given to {@link LanternaViewer.reportError}).
+   */
+  getNotices(): Notice[];
+  /** Show an error as an `error` notice (e.g. a rejected `setActiveLayer`); the latest three are kept. */
+  reportError(error: unknown): void;
+  /** Remove the `error` notices. */
+  dismissErrors(): void;
+  /** Ask again for every tile that failed to load (they are retried automatically twice, after 4 and 8 s). */
+  retryFailedTiles(): void;
+  /**
+   * Call `listener` after any change of light, layer, mode, parameters, lens, overlays, level or
+   * notices; returns an unsubscribe function.
+   */
   onChange(listener: () => void): () => void;
   /** Fit the rectangle (x, y, w, h) in image pixels into the viewer, immediately. */
   showImageRegion(x: number, y: number, width: number, height: number): void;

@@ -1,8 +1,10 @@
 /**
  * The viewer page: `index.html?manifest=URL[&layer=ID][&mode=MODE]`. Exposes the viewer as
- * `window.lanterna`.
+ * `window.lanterna`. A dataset that cannot be opened gives a message in the page (`#error`); errors
+ * after that (switching layers, the lens) show as notices over the viewer.
  */
 import { createControls, createLensControls, createViewer, type LanternaViewer, type RenderMode } from '../index';
+import { describeOpenError, showErrorBox } from './error-page';
 
 declare global {
   interface Window {
@@ -10,25 +12,51 @@ declare global {
   }
 }
 
-function showError(error: unknown): void {
-  const box = document.getElementById('error');
-  if (box) {
-    box.textContent = typeof error === 'string' ? error
-      : error instanceof Error ? `${error.name}: ${error.message}` : String(error);
-    box.hidden = false;
+const errorBox = document.getElementById('error');
+const label = document.getElementById('label');
+
+/** Show the page's error box, and hide the controls that have nothing to act on. */
+function showFatal(error: unknown, manifestUrl: string | null): void {
+  console.error('[lanterna]', error);
+  if (errorBox) {
+    showErrorBox(errorBox, describeOpenError(error), manifestUrl);
+  }
+  for (const id of ['mode', 'home', 'lens', 'overlays']) {
+    const button = document.getElementById(id);
+    if (button) {
+      button.hidden = true;
+    }
+  }
+  if (label) {
+    label.hidden = true;
   }
 }
 
-const params = new URLSearchParams(window.location.search);
-const manifest = params.get('manifest');
-if (!manifest) {
-  showError('No manifest given: open this page as …/viewer/?manifest=URL_OF_MANIFEST.json');
-} else {
-  const layer = params.get('layer') ?? undefined;
-  const mode = params.get('mode');
-  const lanterna = createViewer({ element: 'viewer', manifest: new URL(manifest, window.location.href).href, layer });
+/** Open the viewer on `manifest` and wire the page's controls to it. */
+function open(manifest: string, layer: string | undefined, mode: string | null): void {
+  let lanterna: LanternaViewer;
+  try {
+    lanterna = createViewer({ element: 'viewer', manifest, layer });
+  } catch (error) {
+    showFatal(error, manifest); // e.g. no WebGL2
+    return;
+  }
   window.lanterna = lanterna;
-  const label = document.getElementById('label');
+  /** Run an action of a control; its errors become notices over the viewer. */
+  const attempt = (action: () => unknown): void => {
+    try {
+      const result = action();
+      if (result instanceof Promise) {
+        result.catch((error: unknown) => { lanterna.reportError(error); });
+      }
+    } catch (error) {
+      lanterna.reportError(error);
+    }
+  };
+  const report = (error: unknown): void => { lanterna.reportError(error); };
+  if (label) {
+    label.textContent = 'Loading…';
+  }
   const modeButton = document.getElementById('mode');
   const homeButton = document.getElementById('home');
   const panel = document.getElementById('panel');
@@ -46,7 +74,7 @@ if (!manifest) {
     overlaysButton?.setAttribute('aria-pressed', String(lanterna.getOverlaysVisible()));
   };
   lensButton?.addEventListener('click', () => {
-    lanterna.setLens({ enabled: !lanterna.getLens().enabled }).catch(showError);
+    attempt(() => lanterna.setLens({ enabled: !lanterna.getLens().enabled }));
   });
   overlaysButton?.addEventListener('click', () => {
     lanterna.setOverlaysVisible(!lanterna.getOverlaysVisible());
@@ -56,19 +84,39 @@ if (!manifest) {
     const text = lanterna.manifest?.label ?? '';
     if (label) {
       label.textContent = text;
+      label.hidden = text === '';
     }
     document.title = text ? `${text} · Lanterna` : 'Lanterna viewer';
     if (mode !== null) {
-      lanterna.setRenderMode(mode as RenderMode); // throws RenderModeError for an unknown mode
+      attempt(() => { lanterna.setRenderMode(mode as RenderMode); }); // RenderModeError for an unknown mode
     }
     if (panel) {
-      createControls(lanterna, panel, showError);
-      createLensControls(lanterna, panel, showError);
+      createControls(lanterna, panel, report);
+      createLensControls(lanterna, panel, report);
       panel.hidden = false;
     }
     if (overlaysButton) {
       overlaysButton.hidden = !lanterna.manifest?.layers.some((l) => l.overlays.length > 0);
     }
     syncButtons();
-  }).catch(showError);
+  }, (error: unknown) => {
+    lanterna.destroy();
+    showFatal(error, manifest);
+  });
+}
+
+const params = new URLSearchParams(window.location.search);
+const manifestParam = params.get('manifest');
+if (!manifestParam) {
+  showFatal(new Error('No manifest given: open this page as …/viewer/?manifest=URL_OF_MANIFEST.json'), null);
+} else {
+  let manifest: string | null = null;
+  try {
+    manifest = new URL(manifestParam, window.location.href).href;
+  } catch {
+    showFatal(new Error(`The manifest parameter is not a URL: ${JSON.stringify(manifestParam)}`), null);
+  }
+  if (manifest !== null) {
+    open(manifest, params.get('layer') ?? undefined, params.get('mode'));
+  }
 }

@@ -111,7 +111,7 @@ export class LayerPass {
 
   /** Forget the programs and the filter (after a context loss; they went with the context). */
   forget(): void {
-    this.programs.clear();
+    this.programs.forget();
     this.screenFilter = null;
   }
 

@@ -1,13 +1,59 @@
 /**
  * Upload a {@link PlaneBundle} into one `TEXTURE_2D_ARRAY` (one layer per plane group), bytes
- * unchanged: no premultiplication, no colour-space conversion, no flip.
+ * unchanged: no premultiplication, no colour-space conversion, no flip; and the tile textures the
+ * drawer keeps, made again from the bundle after a context loss.
  */
 import type { PlaneBundle } from '../tiles/bundle';
+
+/** A tile's texture, as the drawer's internal cache keeps it. */
+export interface TileTexture {
+  /** The texture array (null while the context is lost, or when the bundle cannot be uploaded). */
+  texture: WebGLTexture | null;
+  /** Fraction of the texture holding valid data, from the tile's `sourceBounds`. */
+  readonly texScale: readonly [number, number];
+  /** Context generation the texture belongs to (-1: none yet). */
+  generation: number;
+  /** The decoded planes, held by OpenSeadragon's tile cache: uploaded again after a restoration. */
+  readonly bundle: PlaneBundle;
+}
+
+/**
+ * The tile's texture in context generation `generation`, uploaded (again) from its bundle when it
+ * has none of that generation. Null while the context is lost or when the upload fails (the tile is
+ * then skipped, so the coarser level shows through).
+ */
+export function currentTexture(gl: WebGL2RenderingContext, tile: TileTexture, generation: number): WebGLTexture | null {
+  if (gl.isContextLost()) {
+    return null;
+  }
+  if (tile.generation !== generation) {
+    tile.generation = generation;
+    tile.texture = null;
+    // A closed bitmap (its cache record destroyed) has no size; texSubImage3D would throw on it.
+    if (tile.bundle.bitmaps.every((b) => b.width > 0)) {
+      try {
+        tile.texture = uploadPlaneBundle(gl, tile.bundle);
+      } catch {
+        tile.texture = null;
+      }
+    }
+  }
+  return tile.texture;
+}
+
+/** Delete the tile's texture if it belongs to the current, live context. */
+export function freeTileTexture(gl: WebGL2RenderingContext, tile: TileTexture, generation: number): void {
+  if (tile.texture && tile.generation === generation && !gl.isContextLost()) {
+    gl.deleteTexture(tile.texture);
+  }
+  tile.texture = null;
+}
 
 /**
  * Create an immutable RGBA8 texture array holding the bundle's bitmaps.
  *
  * @returns the texture, or null if the context is lost
+ * @throws the browser's error if a bitmap cannot be uploaded (e.g. it was closed)
  */
 export function uploadPlaneBundle(gl: WebGL2RenderingContext, bundle: PlaneBundle): WebGLTexture | null {
   const texture = gl.createTexture();
@@ -17,10 +63,16 @@ export function uploadPlaneBundle(gl: WebGL2RenderingContext, bundle: PlaneBundl
   gl.pixelStorei(gl.UNPACK_COLORSPACE_CONVERSION_WEBGL, gl.NONE);
   gl.pixelStorei(gl.UNPACK_FLIP_Y_WEBGL, false);
   gl.pixelStorei(gl.UNPACK_ALIGNMENT, 1);
-  bundle.bitmaps.forEach((bitmap, layer) => {
-    gl.texSubImage3D(gl.TEXTURE_2D_ARRAY, 0, 0, 0, layer, bundle.width, bundle.height, 1,
-      gl.RGBA, gl.UNSIGNED_BYTE, bitmap);
-  });
+  try {
+    bundle.bitmaps.forEach((bitmap, layer) => {
+      gl.texSubImage3D(gl.TEXTURE_2D_ARRAY, 0, 0, 0, layer, bundle.width, bundle.height, 1,
+        gl.RGBA, gl.UNSIGNED_BYTE, bitmap);
+    });
+  } catch (error) {
+    gl.bindTexture(gl.TEXTURE_2D_ARRAY, null);
+    gl.deleteTexture(texture);
+    throw error;
+  }
   gl.texParameteri(gl.TEXTURE_2D_ARRAY, gl.TEXTURE_WRAP_S, gl.CLAMP_TO_EDGE);
   gl.texParameteri(gl.TEXTURE_2D_ARRAY, gl.TEXTURE_WRAP_T, gl.CLAMP_TO_EDGE);
   gl.texParameteri(gl.TEXTURE_2D_ARRAY, gl.TEXTURE_MIN_FILTER, gl.LINEAR);

@@ -4,6 +4,11 @@
  *
  * It keeps the tile textures and the viewer's settings, and describes each frame (which items are
  * base layers, the lens layer or overlays, and where) to the {@link FrameRenderer}, which draws it.
+ *
+ * A lost WebGL context is kept restorable; on restoration the programs and float targets are made
+ * again on first use and each tile's texture is uploaded again from its cached bundle (OpenSeadragon
+ * keeps the decoded planes in its tile cache, so nothing is fetched again). While the context is
+ * lost, frames draw nothing and nothing throws.
  */
 import OpenSeadragon from 'openseadragon';
 import { LanternaError } from '../errors';
@@ -19,7 +24,8 @@ import { BUNDLE_DATA_TYPE, type PlaneBundle } from '../tiles/bundle';
 import type { Compositor, DrawerLens } from './compositor';
 import { FrameRenderer, type FrameItem, type FrameLayer } from './frame-renderer';
 import type { TileQuad } from './layer-pass';
-import { uploadPlaneBundle } from './plane-texture';
+import { currentTexture, freeTileTexture, type TileTexture } from './plane-texture';
+import { ContextWatch } from './context-watch';
 import { readCanvasPixels, type PixelData } from './read-pixels';
 
 export type { PixelData } from './read-pixels';
@@ -30,13 +36,12 @@ export const RELIGHT_DRAWER_TYPE = 'lanterna';
 /** WebGL2 is not available. */
 export class WebGLUnavailableError extends LanternaError {}
 
-/** What `internalCacheCreate` stores per tile. */
-interface TileTexture {
-  texture: WebGLTexture | null;
-  /** Fraction of the texture holding valid data, from the tile's `sourceBounds`. */
-  texScale: [number, number];
-  /** Context generation the texture belongs to. */
-  generation: number;
+/** What the drawer reports to the viewer (see {@link RelightDrawer.setEvents}). */
+export interface DrawerEvents {
+  /** The WebGL context was lost (`true`), or restored and a frame redrawn (`false`). */
+  context(lost: boolean): void;
+  /** A frame could not be drawn (each distinct message once); the drawer carries on. */
+  error(error: unknown): void;
 }
 
 /** Minimal view of the OSD objects the drawer reads (typed locally: the shipped types omit them). */
@@ -78,11 +83,11 @@ export class RelightDrawer extends OpenSeadragon.DrawerBase implements Composito
   declare private overlayDisplay: AnnotationDisplay;
   declare private light: Light;
   declare private smoothing: boolean;
-  declare private generation: number;
   declare private lastFrame: { item: TiledImageLike; tiles: TileLike[] }[];
   declare private destroyed: boolean;
-  declare private onLost: (e: Event) => void;
-  declare private onRestored: () => void;
+  declare private context: ContextWatch;
+  declare private events: DrawerEvents | null;
+  declare private reported: Set<string>;
 
   constructor(options: ConstructorParameters<typeof OpenSeadragon.DrawerBase>[0]) {
     super(options);
@@ -93,7 +98,6 @@ export class RelightDrawer extends OpenSeadragon.DrawerBase implements Composito
     this.overlayDisplay = 'everywhere';
     this.light = OVERHEAD_LIGHT;
     this.smoothing = true;
-    this.generation = 0;
     this.lastFrame = [];
     this.destroyed = false;
     this.frames = null;
@@ -105,16 +109,30 @@ export class RelightDrawer extends OpenSeadragon.DrawerBase implements Composito
     }
     this.gl = gl;
     this.frames = new FrameRenderer(gl);
-    this.onLost = (e: Event) => { e.preventDefault(); };
-    this.onRestored = () => {
-      this.generation++;
-      this.frames?.forget();
-      this.frames = new FrameRenderer(this.gl);
-      this.setInternalCacheNeedsRefresh();
-      this.viewer.forceRedraw();
-    };
-    this.canvas.addEventListener('webglcontextlost', this.onLost);
-    this.canvas.addEventListener('webglcontextrestored', this.onRestored);
+    this.events = null;
+    this.reported = new Set();
+    this.context = new ContextWatch(this.canvas, gl, {
+      lost: () => { this.events?.context(true); },
+      restored: () => {
+        // The old programs, targets and textures went with the old context: forget them, and let
+        // the next frame make them again (tile textures from their bundles, see currentTexture).
+        this.frames?.forget();
+        this.frames = new FrameRenderer(this.gl);
+        this.reported.clear();
+        this.viewer.forceRedraw();
+        this.events?.context(false);
+      },
+    });
+  }
+
+  /** Tell `events` about context losses and restorations and about frames that failed. */
+  setEvents(events: DrawerEvents | null): void {
+    this.events = events;
+  }
+
+  /** True while the WebGL context is lost. */
+  isContextLost(): boolean {
+    return this.context.lost;
   }
 
   override get defaultOptions(): OpenSeadragon.BaseDrawerOptions {
@@ -209,6 +227,9 @@ export class RelightDrawer extends OpenSeadragon.DrawerBase implements Composito
    * @throws {@link ShaderError} or {@link FloatTargetsUnavailableError}
    */
   prepare(layer: RelightLayer, mode: RenderMode, params: RenderParams = this.params): void {
+    if (this.context.lost) {
+      return; // compiled on first use once the context is back
+    }
     this.frames?.prepare(this.resolve(layer), mode, params);
   }
 
@@ -232,15 +253,13 @@ export class RelightDrawer extends OpenSeadragon.DrawerBase implements Composito
     const texScale: [number, number] = source
       ? [Math.min(source.width, bundle.width) / bundle.width, Math.min(source.height, bundle.height) / bundle.height]
       : [1, 1];
-    const texture = this.gl.isContextLost() ? null : uploadPlaneBundle(this.gl, bundle);
-    return { texture, texScale, generation: this.generation };
+    const data: TileTexture = { texture: null, texScale, generation: -1, bundle };
+    currentTexture(this.gl, data, this.context.generation);
+    return data;
   }
 
   override internalCacheFree(data: TileTexture): void {
-    if (data.texture && data.generation === this.generation && !this.gl.isContextLost()) {
-      this.gl.deleteTexture(data.texture);
-    }
-    data.texture = null;
+    freeTileTexture(this.gl, data, this.context.generation);
   }
 
   /** Draw one frame (called by OpenSeadragon). Calls `getTilesToDraw()` once per item. */
@@ -270,8 +289,8 @@ export class RelightDrawer extends OpenSeadragon.DrawerBase implements Composito
     this.destroyInternalCache();
     this.frames?.destroy();
     super.destroy();
-    this.canvas.removeEventListener('webglcontextlost', this.onLost);
-    this.canvas.removeEventListener('webglcontextrestored', this.onRestored);
+    this.context.destroy();
+    this.events = null;
     const lose = this.gl.getExtension('WEBGL_lose_context');
     lose?.loseContext();
     this.canvas.width = 0;
@@ -332,27 +351,50 @@ export class RelightDrawer extends OpenSeadragon.DrawerBase implements Composito
       }
     }
     const lens = this.lens;
-    this.frames.render({
-      layers, lensLayer, overlays,
-      quadOf: (tile, itemMatrix) => this.quadOf(tile, itemMatrix),
-      mode: this.mode,
-      params: this.params,
-      light: this.light,
-      lens,
-      circle: lens ? lensInDevicePixels(lens, OpenSeadragon.pixelDensityRatio, gl.drawingBufferHeight) : null,
-      overlayDisplay: this.overlayDisplay,
-      smoothing: this.smoothing,
-    });
+    try {
+      this.frames.render({
+        layers, lensLayer, overlays,
+        quadOf: (tile, itemMatrix) => this.quadOf(tile, itemMatrix),
+        mode: this.mode,
+        params: this.params,
+        light: this.light,
+        lens,
+        circle: lens ? lensInDevicePixels(lens, OpenSeadragon.pixelDensityRatio, gl.drawingBufferHeight) : null,
+        overlayDisplay: this.overlayDisplay,
+        smoothing: this.smoothing,
+      });
+    } catch (error) {
+      // Never throw into OpenSeadragon's animation loop: report the error (once) and go on.
+      this.report(error);
+    }
+  }
+
+  /** Report a frame error once per distinct message (none while the context is lost: expected). */
+  private report(error: unknown): void {
+    if (this.context.lost) {
+      return;
+    }
+    const key = error instanceof Error ? `${error.name}: ${error.message}` : String(error);
+    if (this.reported.has(key)) {
+      return;
+    }
+    this.reported.add(key);
+    if (this.events) {
+      this.events.error(error);
+    } else {
+      console.error('[lanterna] a frame could not be drawn:', error);
+    }
   }
 
   /** A tile's texture and placement (null while it has no texture). */
   private quadOf(tile: TileLike, itemMatrix: Mat3): TileQuad | null {
     const data = this.getDataToDraw(tile as unknown as OpenSeadragon.Tile) as TileTexture | undefined;
-    if (!data?.texture) {
+    const texture = data ? currentTexture(this.gl, data, this.context.generation) : null;
+    if (!data || !texture) {
       return null;
     }
     return {
-      texture: data.texture,
+      texture,
       matrix: multiply(itemMatrix, modelMatrix(tile.positionedBounds, tile.flipped === true)),
       texScale: data.texScale,
     };

@@ -50,27 +50,27 @@ export function imageGeometry(info: unknown, url = 'info.json'): ImageGeometry {
  *
  * @param geometries - one per plane group, in plane order
  * @param layerSize - the relight block's width and height
+ * @param names - what to call each plane group in messages (e.g. its info.json URL)
  * @returns the common geometry
  * @throws {@link MismatchedPlanesError} on any difference
  */
 export function commonGeometry(
   geometries: readonly ImageGeometry[],
   layerSize?: { width: number; height: number },
+  names: readonly string[] = [],
 ): ImageGeometry {
   const first = geometries[0];
   if (!first) {
     throw new MismatchedPlanesError('a layer needs at least one plane group');
   }
+  const describe = (g: ImageGeometry, i: number): string => `plane group ${i} (${names[i] ? `${names[i]}: ` : ''}`
+    + `${g.width}×${g.height}, tiles ${g.tileWidth}×${g.tileHeight}, scale factors ${g.scaleFactors.join(',')})`;
   geometries.forEach((g, i) => {
     const same = g.width === first.width && g.height === first.height && g.tileWidth === first.tileWidth
       && g.tileHeight === first.tileHeight && g.scaleFactors.length === first.scaleFactors.length
       && g.scaleFactors.every((s, k) => s === first.scaleFactors[k]);
     if (!same) {
-      throw new MismatchedPlanesError(
-        `plane group ${i} (${g.width}×${g.height}, tiles ${g.tileWidth}×${g.tileHeight}, scale factors `
-        + `${g.scaleFactors.join(',')}) differs from plane group 0 (${first.width}×${first.height}, tiles `
-        + `${first.tileWidth}×${first.tileHeight}, scale factors ${first.scaleFactors.join(',')})`,
-      );
+      throw new MismatchedPlanesError(`${describe(g, i)} differs from ${describe(first, 0)}`);
     }
   });
   if (layerSize && (layerSize.width !== first.width || layerSize.height !== first.height)) {

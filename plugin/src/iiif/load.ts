@@ -1,7 +1,7 @@
 /**
  * Fetch a manifest and the `info.json` of each plane group of its relight layers.
  */
-import { FetchError, ImageInfoError } from './errors';
+import { FetchError, ImageInfoError, MismatchedPlanesError } from './errors';
 import { commonGeometry, imageGeometry, type ImageGeometry } from './image-info';
 import { parseManifest, type ManifestInfo, type ManifestLayer } from './manifest';
 
@@ -19,25 +19,45 @@ export interface LoadedManifest extends ManifestInfo {
   readonly first: LoadedLayer;
 }
 
+/** Time limit of a JSON request (ms). */
+export const FETCH_TIMEOUT_MS = 30000;
+
 /**
- * GET a JSON document.
+ * GET a JSON document, within `timeoutMs`.
  *
- * @throws {@link FetchError} on a network error, an HTTP error or invalid JSON
+ * @throws {@link FetchError} on a network error (CORS included), an HTTP error, no answer in time
+ * or invalid JSON; its message names the URL and the problem
  */
-export async function fetchJson(url: string, init?: RequestInit): Promise<unknown> {
+export async function fetchJson(url: string, init?: RequestInit, timeoutMs = FETCH_TIMEOUT_MS): Promise<unknown> {
+  const timeout = AbortSignal.timeout(timeoutMs);
+  const signal = init?.signal ? AbortSignal.any([init.signal, timeout]) : timeout;
+  const timedOut = (): FetchError => new FetchError(url, 0, `no answer from ${url} within ${timeoutMs / 1000} s`);
   let response: Response;
   try {
-    response = await fetch(url, { mode: 'cors', ...init });
+    response = await fetch(url, { mode: 'cors', ...init, signal });
   } catch (error) {
-    throw new FetchError(url, 0, `cannot fetch ${url}: ${String(error)}`, { cause: error });
+    if (timeout.aborted) {
+      throw timedOut();
+    }
+    throw new FetchError(url, 0, `cannot fetch ${url}: the server cannot be reached, or it does not allow `
+      + `requests from this page (CORS)`, { cause: error });
   }
   if (!response.ok) {
-    throw new FetchError(url, response.status, `HTTP ${response.status} fetching ${url}`);
+    const reason = response.statusText ? ` ${response.statusText}` : '';
+    throw new FetchError(url, response.status, `HTTP ${response.status}${reason} fetching ${url}`);
+  }
+  let text: string;
+  try {
+    text = await response.text();
+  } catch (error) {
+    throw timeout.aborted ? timedOut() : new FetchError(url, response.status, `cannot read ${url}: ${String(error)}`,
+      { cause: error });
   }
   try {
-    return await response.json();
+    return JSON.parse(text) as unknown;
   } catch (error) {
-    throw new FetchError(url, response.status, `${url} is not valid JSON`, { cause: error });
+    const why = error instanceof SyntaxError ? error.message : String(error);
+    throw new FetchError(url, response.status, `${url} is not valid JSON (${why})`, { cause: error });
   }
 }
 
@@ -45,27 +65,49 @@ export async function fetchJson(url: string, init?: RequestInit): Promise<unknow
 export type InfoCache = Map<string, Promise<Record<string, unknown>>>;
 
 /**
+ * The info.json document at `url` (a JSON object), requested once per cache; a failed request is
+ * dropped from the cache, so that asking again tries again.
+ *
+ * @throws {@link FetchError} or {@link ImageInfoError}
+ */
+export function cachedInfo(url: string, init: RequestInit | undefined, cache: InfoCache): Promise<Record<string, unknown>> {
+  let pending = cache.get(url);
+  if (!pending) {
+    const request = fetchJson(url, init).then((info) => {
+      if (typeof info !== 'object' || info === null || Array.isArray(info)) {
+        throw new ImageInfoError(`${url}: not a JSON object`);
+      }
+      return info as Record<string, unknown>;
+    });
+    request.catch(() => {
+      if (cache.get(url) === request) {
+        cache.delete(url);
+      }
+    });
+    cache.set(url, request);
+    pending = request;
+  }
+  return pending;
+}
+
+/**
  * Load the info.json of every plane group of a layer (`{service.id}/info.json`) and check that the
  * groups share one geometry matching the relight block.
  */
 export async function loadLayer(layer: ManifestLayer, init?: RequestInit, cache: InfoCache = new Map()):
   Promise<LoadedLayer> {
-  const infos = await Promise.all(layer.layer.planes.map((plane) => {
-    const url = `${plane.serviceId}/info.json`;
-    let pending = cache.get(url);
-    if (!pending) {
-      pending = fetchJson(url, init).then((info) => {
-        if (typeof info !== 'object' || info === null || Array.isArray(info)) {
-          throw new ImageInfoError(`${url}: not a JSON object`);
-        }
-        return info as Record<string, unknown>;
-      });
-      cache.set(url, pending);
+  const urls = layer.layer.planes.map((plane) => `${plane.serviceId}/info.json`);
+  const infos = await Promise.all(urls.map((url) => cachedInfo(url, init, cache)));
+  const geometries = infos.map((info, i) => imageGeometry(info, urls[i]));
+  let geometry: ImageGeometry;
+  try {
+    geometry = commonGeometry(geometries, layer.layer, urls);
+  } catch (error) {
+    if (error instanceof MismatchedPlanesError) {
+      throw new MismatchedPlanesError(`layer ${layer.id}: ${error.message}`, { cause: error });
     }
-    return pending;
-  }));
-  const geometries = infos.map((info, i) => imageGeometry(info, layer.layer.planes[i]?.serviceId));
-  const geometry = commonGeometry(geometries, layer.layer);
+    throw error;
+  }
   return { ...layer, infos, geometry };
 }
 

@@ -79,4 +79,9 @@ export class ProgramCache {
     }
     this.programs.clear();
   }
+
+  /** Drop the programs without deleting them (after a context loss: they went with the old context). */
+  forget(): void {
+    this.programs.clear();
+  }
 }

@@ -31,9 +31,9 @@ export class LensController {
     this.#options = options;
   }
 
-  /** True while the wanted lens item is still being opened. */
+  /** True while the wanted lens item is still being opened (not once it failed to open). */
   isBusy(): boolean {
-    return this.#wanted !== '' && !this.#opened.has(this.#wanted);
+    return this.#wanted !== '' && !this.#opened.has(this.#wanted) && this.#items.has(this.#wanted);
   }
 
   /** The lens item shown now, if open. */

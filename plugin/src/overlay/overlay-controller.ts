@@ -4,7 +4,7 @@
  * level matching the current level is visible; the others have opacity 0, so they load nothing.
  */
 import type OpenSeadragon from 'openseadragon';
-import { fetchJson, type InfoCache } from '../iiif/load';
+import { cachedInfo, type InfoCache } from '../iiif/load';
 import { imageGeometry } from '../iiif/image-info';
 import type { ManifestLayer } from '../iiif/manifest';
 import { overlayAt, type OverlayLevel } from '../iiif/overlays';
@@ -85,12 +85,7 @@ export class OverlayController {
     if (!pending) {
       pending = (async () => {
         const url = `${level.serviceId}/info.json`;
-        let info = this.#options.infoCache.get(url);
-        if (!info) {
-          info = fetchJson(url, this.#options.fetchInit) as Promise<Record<string, unknown>>;
-          this.#options.infoCache.set(url, info);
-        }
-        const json = await info;
+        const json = await cachedInfo(url, this.#options.fetchInit, this.#options.infoCache);
         const item = await addBundleItem(this.#viewer, {
           infos: [json],
           geometry: imageGeometry(json, url),

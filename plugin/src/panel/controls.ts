@@ -77,7 +77,10 @@ export function createControls(lanterna: LanternaViewer, parent: HTMLElement,
   };
 
   layerSelect.addEventListener('change', () => {
-    lanterna.setActiveLayer(layerSelect.value).catch(onError);
+    lanterna.setActiveLayer(layerSelect.value).catch((error: unknown) => {
+      refresh(); // back to the layer still shown
+      onError(error);
+    });
   });
   modeSelect.addEventListener('change', () => {
     try {

@@ -3,9 +3,10 @@
  * so OpenSeadragon's level choice, coverage, cache and abort apply to all planes in lockstep.
  */
 import OpenSeadragon from 'openseadragon';
-import { ImageInfoError, FetchError } from '../iiif/errors';
+import { ImageInfoError } from '../iiif/errors';
 import type { ImageGeometry } from '../iiif/image-info';
 import { BUNDLE_DATA_TYPE, registerBundleType, type PlaneBundle } from './bundle';
+import { fetchPlane } from './fetch-plane';
 import { bundleKey } from './tile-key';
 
 /** Constructor options of {@link BundleTileSource}. */
@@ -20,19 +21,35 @@ export interface BundleTileSourceOptions {
   readonly previewIndex?: number;
   /** `fetch` credentials mode. @default 'same-origin' */
   readonly credentials?: RequestCredentials;
+  /** Further attempts per plane after a network error or HTTP 408, 429 or 5xx. @default 2 */
+  readonly retries?: number;
+  /** Wait before a plane's first retry, doubled for each next one (ms). @default 500 */
+  readonly retryDelayMs?: number;
 }
 
 /** Per-job state kept on the OSD ImageJob's userData. */
 interface JobState {
-  controller?: AbortController;
+  controller: AbortController;
+  /** The job was finished, failed or aborted: later results are dropped. */
+  settled: boolean;
 }
 
 interface TileJob {
   tile: { level: number; x: number; y: number };
   userData: Record<string, unknown>;
+  /** OpenSeadragon's time limit for the job (ms; its `timeout` option). */
+  timeout?: number;
+  /** Null once OpenSeadragon completed the job itself (its time limit passed). */
+  jobId?: unknown;
   finish(data: unknown, request: unknown, dataType: string): void;
   fail(message: string, request: unknown): void;
 }
+
+/**
+ * How much sooner than OpenSeadragon's own time limit a bundle gives up (ms): OSD's `fail` is not
+ * guarded against a second call, so the source must settle the job before OSD does.
+ */
+const DEADLINE_MARGIN_MS = 250;
 
 /** A plane URL builder: OSD's own IIIF tile source, so URLs match what OSD would request. */
 interface IIIFSource {
@@ -64,6 +81,8 @@ export class BundleTileSource extends OpenSeadragon.TileSource {
   declare planeSources: IIIFSource[];
   declare previewIndex: number;
   declare credentials: RequestCredentials;
+  declare retries: number;
+  declare retryDelayMs: number;
 
   constructor(options: BundleTileSourceOptions) {
     const g = options.geometry;
@@ -85,6 +104,8 @@ export class BundleTileSource extends OpenSeadragon.TileSource {
     this.planeSources = options.infos.map((info, i) => makeIiifSource(info, options.formats?.[i]));
     this.previewIndex = options.previewIndex ?? 0;
     this.credentials = options.credentials ?? 'same-origin';
+    this.retries = options.retries ?? 2;
+    this.retryDelayMs = options.retryDelayMs ?? 500;
   }
 
   private get primary(): IIIFSource {
@@ -139,41 +160,49 @@ export class BundleTileSource extends OpenSeadragon.TileSource {
       && other.getPlaneUrls(0, 0, 0).join() === this.getPlaneUrls(0, 0, 0).join();
   }
 
+  /**
+   * Fetch the tile's K planes together. A plane that fails transiently is retried on its own (the
+   * others are kept); if one still fails, or the bundle is not done shortly before OpenSeadragon's
+   * time limit, the whole bundle fails (OpenSeadragon then keeps drawing the coarser level there).
+   */
   override downloadTileStart(context: OpenSeadragon.ImageJob): void {
     const job = context as unknown as TileJob;
-    const state: JobState = { controller: new AbortController() };
+    const state: JobState = { controller: new AbortController(), settled: false };
     job.userData.lanterna = state;
     const { level, x, y } = job.tile;
     const urls = this.getPlaneUrls(level, x, y);
-    const signal = state.controller?.signal;
-    const previewIndex = this.previewIndex;
-    void Promise.allSettled(urls.map(async (url) => {
-      const response = await fetch(url, { mode: 'cors', credentials: this.credentials, signal });
-      if (!response.ok) {
-        throw new FetchError(url, response.status, `HTTP ${response.status} for ${url}`);
-      }
-      const blob = await response.blob();
-      return createImageBitmap(blob, { premultiplyAlpha: 'none', colorSpaceConversion: 'none' });
-    })).then((results) => {
-      const bitmaps: ImageBitmap[] = [];
-      let error: unknown = null;
-      for (const r of results) {
-        if (r.status === 'fulfilled') {
-          bitmaps.push(r.value);
-        } else {
-          error ??= r.reason;
-        }
-      }
-      const first = bitmaps[0];
-      if (error !== null || !first || bitmaps.some((b) => b.width !== first.width || b.height !== first.height)) {
-        // One missing or odd plane fails the whole bundle; free the planes that did arrive.
-        bitmaps.forEach((b) => { b.close(); });
-        const reason = error === null ? 'plane tiles differ in size'
-          : error instanceof Error ? error.message : 'download failed';
-        job.fail(`[lanterna] ${urls[0] ?? ''}: ${reason}`, null);
+    const limit = job.timeout ?? 30000;
+    let timedOut = false;
+    const deadline = setTimeout(() => {
+      timedOut = true;
+      state.controller.abort(new Error('timed out'));
+    }, Math.max(0, limit - DEADLINE_MARGIN_MS));
+    const options = {
+      credentials: this.credentials, signal: state.controller.signal, retries: this.retries,
+      retryDelayMs: this.retryDelayMs,
+    };
+    void Promise.allSettled(urls.map((url) => fetchPlane(url, options))).then((results) => {
+      clearTimeout(deadline);
+      const bitmaps = results.flatMap((r) => (r.status === 'fulfilled' ? [r.value] : []));
+      const index = results.findIndex((r) => r.status === 'rejected');
+      const failed = results[index];
+      const drop = (): void => { bitmaps.forEach((b) => { b.close(); }); };
+      // Aborted by OpenSeadragon, or completed by its own time limit: it must not hear from us again.
+      if (state.settled || job.jobId === null) {
+        drop();
         return;
       }
-      const bundle: PlaneBundle = { bitmaps, previewIndex, width: first.width, height: first.height };
+      state.settled = true;
+      const first = bitmaps[0];
+      if (failed || !first || bitmaps.some((b) => b.width !== first.width || b.height !== first.height)) {
+        // One missing or odd plane fails the whole bundle; free the planes that did arrive.
+        drop();
+        const why = timedOut ? `no answer from ${urls[index] ?? urls[0] ?? ''} within ${(limit / 1000).toFixed(1)} s`
+          : bundleFailure(failed?.status === 'rejected' ? failed.reason : undefined, bitmaps, urls);
+        job.fail(`[lanterna] tile ${level}/${x}_${y}: ${why}`, null);
+        return;
+      }
+      const bundle: PlaneBundle = { bitmaps, previewIndex: this.previewIndex, width: first.width, height: first.height };
       job.finish(bundle, null, BUNDLE_DATA_TYPE);
     });
   }
@@ -181,6 +210,21 @@ export class BundleTileSource extends OpenSeadragon.TileSource {
   override downloadTileAbort(context: OpenSeadragon.ImageJob): void {
     const job = context as unknown as TileJob;
     const state = job.userData.lanterna as JobState | undefined;
-    state?.controller?.abort();
+    if (state) {
+      state.settled = true; // OpenSeadragon fails the job itself right after this
+      state.controller.abort(new Error('aborted'));
+    }
   }
+}
+
+/** Why a bundle failed, for the `tile-load-failed` message. */
+function bundleFailure(reason: unknown, bitmaps: readonly ImageBitmap[], urls: readonly string[]): string {
+  if (reason !== undefined) {
+    return reason instanceof Error ? reason.message : JSON.stringify(reason);
+  }
+  if (bitmaps.length === 0) {
+    return `no planes (${urls.join(', ')})`;
+  }
+  const sizes = bitmaps.map((b, i) => `${urls[i] ?? '?'}: ${b.width}×${b.height}`);
+  return `plane tiles differ in size (${sizes.join('; ')})`;
 }

@@ -3,11 +3,17 @@
  * navigator, level selection) and access to its drawer.
  */
 import OpenSeadragon from 'openseadragon';
-import { RelightDrawer } from '../drawer/relight-drawer';
-import { LanternaError } from '../errors';
+import { RelightDrawer, WebGLUnavailableError } from '../drawer/relight-drawer';
 
-/** Create the OpenSeadragon viewer in `element`; `osd` overrides the defaults. */
+/**
+ * Create the OpenSeadragon viewer in `element`; `osd` overrides the defaults.
+ *
+ * @throws {@link WebGLUnavailableError} without WebGL2 (OpenSeadragon would throw a bare Error)
+ */
 export function createOsdViewer(element: HTMLElement, osd?: Partial<OpenSeadragon.Options>): OpenSeadragon.Viewer {
+  if (!RelightDrawer.isSupported()) {
+    throw new WebGLUnavailableError('WebGL2 is not available in this browser, so the Lanterna drawer cannot start');
+  }
   return OpenSeadragon({
     element,
     drawer: RelightDrawer,
@@ -23,6 +29,10 @@ export function createOsdViewer(element: HTMLElement, osd?: Partial<OpenSeadrago
     minZoomImageRatio: 0.05,
     visibilityRatio: 0.1,
     maxImageCacheCount: 150,
+    // At most 8 bundles (8·K plane requests) at a time: OpenSeadragon's time limit (`timeout`) runs
+    // from a job's start, so without a limit a tile queued behind hundreds of plane requests in the
+    // browser could time out on a slow network without anything being wrong.
+    imageLoaderLimit: 8,
     gestureSettingsMouse: { clickToZoom: false, dblClickToZoom: true },
     gestureSettingsTouch: { flickEnabled: false },
     silenceMultiImageWarnings: true,
@@ -33,12 +43,12 @@ export function createOsdViewer(element: HTMLElement, osd?: Partial<OpenSeadrago
 /**
  * The viewer's drawer.
  *
- * @throws {@link LanternaError} if the viewer is not using the Lanterna drawer
+ * @throws {@link WebGLUnavailableError} if the viewer is not using the Lanterna drawer (it needs WebGL2)
  */
 export function relightDrawerOf(viewer: OpenSeadragon.Viewer): RelightDrawer {
   const d = viewer.drawer as unknown;
   if (!(d instanceof RelightDrawer)) {
-    throw new LanternaError('the viewer is not using the Lanterna drawer (is WebGL2 available?)');
+    throw new WebGLUnavailableError('WebGL2 is not available, so the Lanterna drawer could not start');
   }
   return d;
 }

@@ -17,11 +17,13 @@ import { lightFromProjection, type Light } from '../math/light';
 import { overlayState } from '../overlay/overlay-controller';
 import { DEFAULT_RENDER_MODE, isRenderMode, type RenderMode } from '../render/modes';
 import { DEFAULT_RENDER_PARAMS, mergeParams, type RenderParams } from '../render/params';
+import { RelightDrawer } from '../drawer/relight-drawer';
 import { attachInteraction, type DragMode } from '../ui/interaction';
 import { createLightWidget, type LightWidget } from '../ui/light-widget';
 import { whenFullyLoaded } from './fully-loaded';
 import { LayerSlots, levelOf, type LayerSlot } from './layer-slots';
 import { LensWiring } from './lens-wiring';
+import { ViewerNotices } from './notices';
 import { createOsdViewer, relightDrawerOf } from './osd-viewer';
 import { OverlayWiring } from './overlay-wiring';
 
@@ -66,14 +68,23 @@ export function createViewer(options: CreateViewerOptions): LanternaViewer {
     viewer.forceRedraw();
     notify();
   };
-  const reportError = (error: unknown): void => {
-    console.warn('[lanterna]', error);
-  };
-
   const widget: LightWidget | null = options.lightIndicator === false ? null : createLightWidget(viewer.element, {
     getLight: () => light,
     setLight: (l) => { applyLight(l); },
   });
+
+  // Above the light widget (12 px from the bottom, 96 px high), if there is one.
+  const notices = new ViewerNotices(viewer, { show: options.notices !== false, bottom: widget ? 120 : 12, onChange: notify });
+  const reportError = (error: unknown): void => {
+    if (destroyed) {
+      return; // e.g. an item that was still opening
+    }
+    console.warn('[lanterna]', error);
+    notices.reportError(error);
+  };
+  if (viewer.drawer instanceof RelightDrawer) {
+    viewer.drawer.setEvents({ context: (lost) => { notices.setContextLost(lost); }, error: reportError });
+  }
 
   const applyLight = (next: Light): void => {
     light = next;
@@ -156,7 +167,12 @@ export function createViewer(options: CreateViewerOptions): LanternaViewer {
     slots.add(parsed.layers);
     await activate(slots.require(options.layer ?? parsed.layers[0]?.id ?? ''));
     applyLight(light);
-  })();
+  })().catch((error: unknown) => {
+    // Always a LanternaError, whatever failed underneath (OpenSeadragon, the browser).
+    throw error instanceof LanternaError ? error
+      : new LanternaError(`cannot open the viewer: ${error instanceof Error ? error.message : String(error)}`,
+        { cause: error });
+  });
   // Avoid an unhandled rejection if the caller never awaits `ready`.
   ready.catch(() => undefined);
 
@@ -221,6 +237,10 @@ export function createViewer(options: CreateViewerOptions): LanternaViewer {
       drawer().setRenderParams(params);
       changed();
     },
+    getNotices: () => notices.list(),
+    reportError,
+    dismissErrors: () => { notices.dismissErrors(); },
+    retryFailedTiles: () => { notices.retryTiles(); },
     onChange(listener: () => void) {
       listeners.add(listener);
       return () => { listeners.delete(listener); };
@@ -243,6 +263,7 @@ export function createViewer(options: CreateViewerOptions): LanternaViewer {
       detach();
       lens.destroy();
       overlays.destroy();
+      notices.destroy();
       widget?.destroy();
       viewer.destroy();
     },
