@@ -1,14 +1,10 @@
-"""Reading input files and writing output files with one-line errors; writes are atomic."""
+"""Reading input files with one-line errors: regular files only, of bounded size."""
 
 from __future__ import annotations
 
-import json
 import os
 import stat
-import tempfile
-from collections.abc import Sequence
 from pathlib import Path
-from typing import Any
 
 from lanterna.errors import LanternaInputError
 
@@ -65,32 +61,3 @@ def check_regular_file(src: Path, what: str) -> Path:
         raise LanternaInputError(src, f"is not a regular file (a device, FIFO or socket), not "
                                  f"{what}")
     return src
-
-
-def write_atomic(dest: Path, chunks: Sequence[bytes]) -> None:
-    """Write ``chunks`` to a temporary file beside ``dest``, then rename it into place."""
-    try:
-        fd, tmp = tempfile.mkstemp(dir=dest.parent, prefix=f".{dest.name}.", suffix=".tmp")
-    except OSError as exc:
-        raise LanternaInputError(dest, f"cannot write file ({exc.strerror})") from None
-    try:
-        with os.fdopen(fd, "wb") as out:
-            for chunk in chunks:
-                out.write(chunk)
-        os.replace(tmp, dest)
-    except BaseException:
-        Path(tmp).unlink(missing_ok=True)
-        raise
-
-
-def read_json(path: Path) -> dict[str, Any]:
-    """Read a JSON object with one-line errors."""
-    try:
-        doc = json.loads(Path(path).read_text())
-    except OSError as err:
-        raise LanternaInputError(path, f"cannot read ({err.strerror})") from None
-    except ValueError as err:
-        raise LanternaInputError(path, f"not valid JSON ({err})") from None
-    if not isinstance(doc, dict):
-        raise LanternaInputError(path, "expected a JSON object")
-    return doc
