@@ -16,7 +16,7 @@ from __future__ import annotations
 
 import json
 import math
-from collections.abc import Iterable, Iterator, Mapping
+from collections.abc import Iterable, Mapping
 from functools import cache
 from importlib import resources
 from pathlib import Path
@@ -72,9 +72,9 @@ def load_json(path: Path) -> Any:
 
 def check_document(doc: Any, schema: str, source: str | Path | None) -> dict[str, Any]:
     """Check a parsed document (from a file or a caller) against ``schema``; return it."""
-    for where, value in _numbers(doc, ()):
-        if not math.isfinite(value):
-            raise LanternaInputError(source, f"{json_path(where)}: a number too large to use")
+    found = non_finite(doc)
+    if found is not None:
+        raise LanternaInputError(source, f"{found[0]}: a number too large to use")
     error = best_match(validator(schema).iter_errors(doc))
     if error is not None:
         raise LanternaInputError(source, explain(error))
@@ -113,17 +113,18 @@ def json_path(parts: Iterable[str | int]) -> str:
     return out or "(document)"
 
 
-def _numbers(doc: Any, where: tuple[str | int, ...]) -> Iterator[tuple[tuple[str | int, ...],
-                                                                       float]]:
-    """Every float of a parsed document with its path (ints are exact and always finite)."""
+def non_finite(doc: Any, where: tuple[str | int, ...] = ()) -> tuple[str, float] | None:
+    """The JSON path (:func:`json_path`) and value of the first non-finite number in a parsed
+    document, if any (``NaN`` and infinities: what JSON cannot hold)."""
     if isinstance(doc, float):
-        yield where, doc
-    elif isinstance(doc, dict):
-        for key, value in doc.items():
-            yield from _numbers(value, (*where, str(key)))
-    elif isinstance(doc, list):
-        for i, value in enumerate(doc):
-            yield from _numbers(value, (*where, i))
+        return None if math.isfinite(doc) else (json_path(where), doc)
+    items = doc.items() if isinstance(doc, dict) else (
+        enumerate(doc) if isinstance(doc, list | tuple) else ())
+    for key, value in items:
+        found = non_finite(value, (*where, key if isinstance(key, int) else str(key)))
+        if found is not None:
+            return found
+    return None
 
 
 def _unknown_keys(error: ValidationError) -> str:

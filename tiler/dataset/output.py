@@ -11,7 +11,6 @@ viewer's ``JSON.parse`` rejects the document), naming the file and the first suc
 from __future__ import annotations
 
 import json
-import math
 import re
 from collections.abc import Iterator
 from contextlib import contextmanager
@@ -21,6 +20,7 @@ from typing import Any
 import pyvips
 
 from lanterna.errors import LanternaInputError
+from lanterna.tiler.documents import non_finite
 
 _SYSTEM_ERROR = re.compile(r"system error: (.+)")
 
@@ -57,26 +57,9 @@ def json_text(doc: Any, path: Path) -> str:
     try:
         return json.dumps(doc, indent=2, allow_nan=False)
     except ValueError:
-        where = non_finite(doc)
-        if where is None:
+        found = non_finite(doc)
+        if found is None:
             raise
-        raise LanternaInputError(path, f"cannot write: {where[0] or 'the document'} is "
-                                 f"{where[1]} (JSON has no NaN or infinity)") from None
-
-
-def non_finite(doc: Any, where: str = "") -> tuple[str, float] | None:
-    """Return ``(json path, value)`` of the first non-finite number in ``doc``, if any."""
-    if isinstance(doc, float) and not math.isfinite(doc):
-        return where, doc
-    items: Iterator[tuple[str, Any]]
-    if isinstance(doc, dict):
-        items = ((f"{where}.{key}" if where else str(key), value) for key, value in doc.items())
-    elif isinstance(doc, list | tuple):
-        items = ((f"{where}[{i}]", value) for i, value in enumerate(doc))
-    else:
-        return None
-    for inner, value in items:
-        found = non_finite(value, inner)
-        if found is not None:
-            return found
-    return None
+        where = "the document" if found[0] == "(document)" else found[0]
+        raise LanternaInputError(path, f"cannot write: {where} is {found[1]} (JSON has no NaN "
+                                 "or infinity)") from None
