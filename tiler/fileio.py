@@ -27,15 +27,14 @@ def read_input(src: Path, what: str, *, max_bytes: int | None = None) -> bytes:
     except OSError as exc:
         raise LanternaInputError(src, f"cannot read file ({exc.strerror})") from None
     info = os.fstat(fd)
-    if not stat.S_ISREG(info.st_mode) or (max_bytes is not None and info.st_size > max_bytes):
+    try:
+        _check_mode(src, info.st_mode, what)
+        if max_bytes is not None and info.st_size > max_bytes:
+            raise LanternaInputError(src, f"is {info.st_size:,} bytes; at most {max_bytes:,} are "
+                                     f"read as {what}")
+    except LanternaInputError:
         os.close(fd)
-        if stat.S_ISDIR(info.st_mode):
-            raise LanternaInputError(src, f"is a directory, not {what}")
-        if not stat.S_ISREG(info.st_mode):
-            raise LanternaInputError(src, f"is not a regular file (a device, FIFO or socket), not "
-                                     f"{what}")
-        raise LanternaInputError(src, f"is {info.st_size:,} bytes; at most {max_bytes:,} are "
-                                 f"read as {what}")
+        raise
     with os.fdopen(fd, "rb") as f:
         try:
             return f.read()
@@ -55,9 +54,14 @@ def check_regular_file(src: Path, what: str) -> Path:
         raise LanternaInputError(src, "file not found") from None
     except OSError as exc:
         raise LanternaInputError(src, f"cannot read file ({exc.strerror})") from None
+    _check_mode(src, mode, what)
+    return src
+
+
+def _check_mode(src: Path, mode: int, what: str) -> None:
+    """Refuse anything but a regular file: a directory, a device, a FIFO, a socket."""
     if stat.S_ISDIR(mode):
         raise LanternaInputError(src, f"is a directory, not {what}")
     if not stat.S_ISREG(mode):
         raise LanternaInputError(src, f"is not a regular file (a device, FIFO or socket), not "
                                  f"{what}")
-    return src
