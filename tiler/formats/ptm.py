@@ -273,9 +273,10 @@ def _check_jpeg_header(buf: bytes, header: PtmHeader, plane: int, src: Path) -> 
     return image
 
 
-def _decode_jpeg(buf: bytes, header: PtmHeader, plane: int, src: Path) -> npt.NDArray[np.uint8]:
-    """Decode one single-band JPEG stream to an ``(H, W)`` array in JPEG raster order."""
-    image = _check_jpeg_header(buf, header, plane, src)
+def _decode_jpeg(image: pyvips.Image, header: PtmHeader, plane: int,
+                 src: Path) -> npt.NDArray[np.uint8]:
+    """Decode one opened JPEG stream (:func:`_check_jpeg_header`) to an ``(H, W)`` array in
+    JPEG raster order."""
     try:
         pixels = image.write_to_memory()
     except pyvips.Error as exc:
@@ -301,15 +302,15 @@ def _decode_jpeg_planes(
             f"payload is too {which}: {len(data) - start} bytes,"
             f" the header implies {offsets[-1] - start}",
         )
-    for plane in range(n):  # every stream's own header, before anything is allocated
-        _check_jpeg_header(data[offsets[plane]: offsets[plane] + info.sizes[plane]], header,
-                           plane, src)
+    # every stream's own header, before anything is allocated or decoded
+    streams = [_check_jpeg_header(data[offsets[i]: offsets[i] + info.sizes[i]], header, i, src)
+               for i in range(n)]
     h, w = header.height, header.width
     planes = np.zeros((n, h, w), dtype=np.uint8)
     for plane in sorted(range(n), key=lambda i: info.order[i]):
         begin = offsets[plane]
         jpeg_end = begin + info.sizes[plane]
-        values = _decode_jpeg(data[begin:jpeg_end], header, plane, src)
+        values = _decode_jpeg(streams[plane], header, plane, src)
         ref = info.reference[plane]
         if ref >= 0:
             base = planes[ref].astype(np.int16)
