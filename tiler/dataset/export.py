@@ -31,7 +31,7 @@ from lanterna.manifests.validate import validate_manifest
 
 from .output import json_text, write_errors
 from .publish import list_datasets, new_temp, reading, replace_folder, writing
-from .writer import read_description
+from .writer import link_or_copy, read_description
 
 
 @dataclass
@@ -161,7 +161,7 @@ def _export_dataset(folder: Path, version: Path, tmp: Path, base: str,
                 shown = report.out / name / here.relative_to(version) / file
                 _rewrite_json(here / file, dest / file, old, base, shown)
                 report.rewritten += 1
-            elif _link_or_copy(here / file, dest / file):
+            elif link_or_copy(here / file, dest / file):
                 report.linked += 1
             else:
                 report.copied += 1
@@ -203,16 +203,6 @@ def rebase(doc: Any, old: str, new: str) -> Any:
     if isinstance(doc, dict):
         return {key: rebase(value, old, new) for key, value in doc.items()}
     return doc
-
-
-def _link_or_copy(src: Path, dst: Path) -> bool:
-    """Hard-link ``src`` at ``dst``; copy it when that is impossible. True if linked."""
-    try:
-        os.link(src, dst)
-        return True
-    except OSError:
-        shutil.copy2(src, dst)
-        return False
 
 
 def _index_html(report: ExportReport) -> str:

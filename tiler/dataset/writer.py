@@ -230,7 +230,7 @@ def rewriting(out: Path) -> Iterator[tuple[Path, dict[str, Any]]]:
         try:
             with write_errors(out):
                 shutil.copytree(os.path.realpath(out), tmp, dirs_exist_ok=True,
-                                copy_function=_link_or_copy)
+                                copy_function=link_or_copy)
                 yield tmp, desc
                 write_documents(tmp, desc, out)
                 publish(tmp, out)
@@ -252,12 +252,14 @@ def read_description(dataset: Path) -> dict[str, Any]:
     return desc
 
 
-def _link_or_copy(src: str, dst: str) -> object:
+def link_or_copy(src: str | Path, dst: str | Path) -> bool:
+    """Hard-link ``src`` at ``dst``; copy it when that is impossible. True if linked."""
     try:
         os.link(src, dst)
+        return True
     except OSError:
         shutil.copy2(src, dst)
-    return dst
+        return False
 
 
 def _write_json(path: Path, doc: dict[str, Any], shown: Path) -> None:

@@ -216,7 +216,7 @@ def test_a_failure_half_way_leaves_nothing(root: Path, tmp_path: Path,
         os.link(src, dst)
         return True
 
-    monkeypatch.setattr(export_mod, "_link_or_copy", failing)
+    monkeypatch.setattr(export_mod, "link_or_copy", failing)
     with pytest.raises(LanternaInputError) as err:
         export(root, out, NEW, force=True)
     assert str(err.value) == f"{out}: cannot write (No space left on device); nothing was changed"
