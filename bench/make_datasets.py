@@ -46,8 +46,11 @@ def quantise_ptm(coef: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     return np.clip(b, 0, 255).astype(np.uint8), scale, bias
 
 
-def hsh_field(n: np.ndarray, albedo: np.ndarray, terms: int) -> Hsh:
-    """HSH coefficients of albedo·max(0, n·l), least squares over a hemisphere of lights."""
+def hsh_coefficients(n: np.ndarray, albedo: np.ndarray, terms: int) -> np.ndarray:
+    """HSH coefficients of albedo·max(0, n·l), least squares over a hemisphere of lights.
+
+    Float32, shape (H, W, 3, terms) (colour, term), in 0–1 display units.
+    """
     lights = []
     for ring, count in ((15, 8), (35, 12), (55, 16), (75, 20)):
         for i in range(count):
@@ -64,6 +67,12 @@ def hsh_field(n: np.ndarray, albedo: np.ndarray, terms: int) -> Hsh:
         k = shade @ pinv.T  # (P, terms)
         a = albedo[y0 : y0 + 256].reshape(-1, 3, 1) * k[:, None, :]
         coef[y0 : y0 + 256] = a.reshape(-1, w, 3, terms)
+    return coef
+
+
+def hsh_field(n: np.ndarray, albedo: np.ndarray, terms: int) -> Hsh:
+    """:func:`hsh_coefficients` quantised to bytes, one scale and bias per term."""
+    coef = hsh_coefficients(n, albedo, terms)
     lo = coef.min(axis=(0, 1, 2))
     hi = coef.max(axis=(0, 1, 2))
     span = np.where(hi > lo, hi - lo, 1.0)
