@@ -179,7 +179,10 @@ async function waitOpened(page, net, what) {
   try {
     await page.waitForFunction(() => ['done', 'error'].includes(window.__coldopen?.state)
       || document.getElementById('error')?.hidden === false, null, { timeout: timeoutMs, polling: 100 });
-  } catch {
+  } catch (error) {
+    if (error?.name !== 'TimeoutError') {
+      throw error; // e.g. the browser closed by a signal
+    }
     throw new BenchError(`${what}: not fully loaded after ${timeoutMs / 1000} s (${net.errors.join('; ')})`);
   }
   const state = await page.evaluate(() => ({ ...window.__coldopen, timeOrigin: performance.timeOrigin,
@@ -342,7 +345,8 @@ async function main() {
     commit: commit(),
     settings: { server, rounds, warmup, switch: switchPair, freshBrowserPerRun: true },
     datasets: Object.fromEntries(plan.map((p) => [p.dataset, { size: p.size, reference: p.reference,
-      sourceQuality: table.datasets[p.dataset].quality, importArgs: table.datasets[p.dataset].importArgs }])),
+      sourceQuality: table.datasets[p.dataset].quality ?? table.quality,
+      importArgs: table.datasets[p.dataset].importArgs ?? table.importArgs }])),
     ...summary,
     runs,
   };
@@ -351,13 +355,19 @@ async function main() {
   }
 }
 
+let interrupted = false;
 for (const signal of ['SIGINT', 'SIGTERM']) {
   process.on(signal, () => {
+    interrupted = true;
+    process.stderr.write(`coldopen.mjs: ${signal}, closing Chromium\n`);
     Promise.resolve(current?.close()).finally(() => process.exit(130));
   });
 }
 
 main().catch((error) => {
+  if (interrupted) {
+    return; // the browser was closed under the run: no error of its own
+  }
   process.stderr.write(`coldopen.mjs: ${error instanceof BenchError ? error.message : error?.stack ?? String(error)}\n`);
   process.exitCode = 1;
 });
