@@ -7,6 +7,7 @@ import { UnknownLayerError, type LayerInfo } from '../api/viewer-api';
 import { loadLayer, type InfoCache, type LoadedLayer } from '../iiif/load';
 import type { ManifestLayer } from '../iiif/manifest';
 import type { RelightLayer } from '../iiif/relight-service';
+import { wholeLevelTiling } from '../iiif/whole-levels';
 import { layerKindOf, type LayerKind } from '../layers/layer-kinds';
 import { currentLevel, imagePxPerDevicePx, maxLevelOf } from '../math/levels';
 import { addBundleItem } from '../tiles/add-item';
@@ -27,6 +28,8 @@ export interface LayerSlotsOptions {
   readonly fetchInit?: RequestInit;
   /** info.json documents already requested. */
   readonly infoCache: InfoCache;
+  /** Longest side (px) up to which a layer loads by whole levels (`wholeLevelTiling`); 0: tiles always. */
+  readonly wholeLevelMaxSide: number;
   /** Called once per new layer item (e.g. to tell the drawer how to draw it). */
   register(item: OpenSeadragon.TiledImage, layer: RelightLayer): void;
 }
@@ -96,9 +99,10 @@ export class LayerSlots {
 
   /** Add a (invisible) TiledImage of a slot's loaded planes; `what` names it in errors. */
   addItem(slot: LayerSlot, loaded: LoadedLayer, what: string): Promise<OpenSeadragon.TiledImage> {
+    const whole = wholeLevelTiling(loaded.infos, loaded.geometry, this.#options.wholeLevelMaxSide);
     return addBundleItem(this.#viewer, {
-      infos: loaded.infos,
-      geometry: loaded.geometry,
+      infos: whole?.infos ?? loaded.infos,
+      geometry: whole?.geometry ?? loaded.geometry,
       formats: loaded.layer.planes.map((p) => p.format),
       previewIndex: slot.kind.previewPlane,
       opacity: 0,
