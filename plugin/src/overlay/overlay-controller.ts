@@ -94,6 +94,7 @@ export class OverlayController {
         const item = await addBundleItem(this.#viewer, {
           infos: whole?.infos ?? [json],
           geometry: whole?.geometry ?? geometry,
+      cutoffLevel: whole?.cutoffLevel,
           formats: ['png'],
           width: overlayItemWidth(level, canvasWidth),
           opacity: 0,

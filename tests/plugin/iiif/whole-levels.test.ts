@@ -1,6 +1,6 @@
 import { describe, expect, it } from 'vitest';
 import type { ImageGeometry } from '../../../plugin/src/iiif/image-info';
-import { DEFAULT_WHOLE_LEVEL_MAX_SIDE, wholeLevelTiling } from '../../../plugin/src/iiif/whole-levels';
+import { DEFAULT_WHOLE_LEVEL_MAX_SIDE, viewLevel, wholeLevelTiling } from '../../../plugin/src/iiif/whole-levels';
 import { info } from '../fixtures';
 
 /** An info.json of a W×H level-0 pyramid in 256² tiles, as the dataset writer makes it. */
@@ -56,5 +56,32 @@ describe('wholeLevelTiling', () => {
     const { info: i, geometry } = pyramid(900, 700);
     expect(wholeLevelTiling([i], { ...geometry, scaleFactors: [1, 4] }, 1024)).toBeNull();
     expect(wholeLevelTiling([{ ...i, maxWidth: 450, maxHeight: 350 }], geometry, 1024)).toBeNull();
+  });
+});
+
+describe('the coverage cut-off of whole levels', () => {
+  it('is the original tiling\'s one-tile level without a view (OpenSeadragon loads the same levels)', () => {
+    const { info: i, geometry } = pyramid(1024, 1024); // 256², 512², 1024²: only the 256² level fits a tile
+    expect(wholeLevelTiling([i], geometry, 1024)?.cutoffLevel).toBe(0);
+    const wide = pyramid(900, 200); // 225×50 and 450×100 (two tiles wide) and 900×200
+    expect(wholeLevelTiling([wide.info], wide.geometry, 1024)?.cutoffLevel).toBe(0);
+  });
+
+  it('is the level the opening view needs, given one', () => {
+    const { info: i, geometry } = pyramid(1024, 1024);
+    const at = (displayWidth: number) => wholeLevelTiling([i], geometry, 1024, { displayWidth, minPixelRatio: 0.75 })
+      ?.cutoffLevel;
+    expect([at(1080), at(768), at(767), at(480), at(384), at(100)]).toEqual([2, 2, 1, 1, 1, 0]);
+  });
+});
+
+describe('viewLevel', () => {
+  it('picks the finest level whose pixels are at least minPixelRatio CSS px wide', () => {
+    expect(viewLevel(640, 640, 2, 0.5)).toBe(2);
+    expect(viewLevel(319, 640, 2, 0.5)).toBe(1); // 319/640 < 0.5 ≤ 319/320
+    expect(viewLevel(160, 640, 2, 1)).toBe(0);
+    expect(viewLevel(10, 640, 2, 1)).toBe(0); // the coarsest, even when too big
+    expect(viewLevel(641, 641, 0, 1)).toBe(0);
+    expect(viewLevel(161, 641, 2, 1)).toBe(0); // level 1 is ceil(641/2) = 321 wide
   });
 });
