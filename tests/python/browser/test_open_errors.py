@@ -21,6 +21,7 @@ import pytest
 
 from tests.python.fixtures.browser import open_failing
 from tests.python.fixtures.faults import NoCorsServer, make_noisy_dataset
+from tests.python.fixtures.manifests import without_descriptions
 from tests.python.fixtures.servers import LiveServer
 
 pytestmark = pytest.mark.browser
@@ -99,8 +100,7 @@ def services_changed(manifest: dict[str, Any],
 
 def bare(s: Served, *routes: dict[str, Any]) -> tuple[str, list[dict[str, Any]]]:
     """Open the manifest without the embedded image descriptions (the viewer fetches info.json)."""
-    keep = ("id", "type", "profile")
-    older = services_changed(s.manifest, lambda svc: {k: v for k, v in svc.items() if k in keep})
+    older = without_descriptions(s.manifest)
     return s.manifest_url, [exactly(s.manifest_url, **json_body(older)), *routes]
 
 

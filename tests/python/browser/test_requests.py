@@ -20,12 +20,12 @@ import numpy.typing as npt
 import pytest
 import pyvips
 
-from lanterna.manifests.services import DESCRIPTION_KEYS
 from lanterna.tiler.dataset.layers import add_ptm_layer
 from lanterna.tiler.dataset.writer import DatasetWriter
 from lanterna.tiler.formats.ptm_model import ptm_weights
 from lanterna.tiler.iiif import geometry as geo
 from tests.python.fixtures.browser import Shot, render
+from tests.python.fixtures.manifests import without_descriptions
 from tests.python.fixtures.ptm import random_ptm_of_size
 from tests.python.fixtures.ptm_relight import TOLERANCE
 from tests.python.fixtures.servers import LiveServer
@@ -101,18 +101,6 @@ def _assert_frame(frame: npt.NDArray[np.uint8], expected: npt.NDArray[np.int16],
     assert expected.std() > 10, "the reference must not be a flat image"
 
 
-def _strip_descriptions(node: Any) -> Any:
-    """``node`` with every ImageService3 reduced to ``{id, type, profile}`` (an older manifest)."""
-    if isinstance(node, list):
-        return [_strip_descriptions(v) for v in node]
-    if not isinstance(node, dict):
-        return node
-    bare = {k: _strip_descriptions(v) for k, v in node.items()}
-    if node.get("type") == "ImageService3":
-        bare = {k: v for k, v in bare.items() if k == "profile" or k not in DESCRIPTION_KEYS}
-    return bare
-
-
 def test_no_info_json_request_when_the_manifest_embeds_the_descriptions(
         tmp_path: Path, live_server: Callable[[Path], LiveServer]) -> None:
     w, h = 600, 400
@@ -139,7 +127,7 @@ def test_a_manifest_without_descriptions_opens_through_info_json(
     manifest_url = f"{server.url}/datasets/obj/manifest.json"
     served = json.loads((ds / "manifest.json").read_text().replace(
         "http://127.0.0.1:8000/datasets", f"{server.url}/datasets"))
-    bare = _strip_descriptions(served)
+    bare = without_descriptions(served)
     assert "tiles" not in json.dumps(bare) and "LanternaRelight" in json.dumps(bare)
     route = {"match": f"^{re.escape(manifest_url)}$", "status": 200, "body": json.dumps(bare),
              "contentType": "application/json"}
