@@ -4,6 +4,8 @@ One Canvas; one painting annotation whose body is a ``Choice`` of the layers (th
 the default visible layer). Each item is an ``Image`` (a concrete ``full/max`` URL of the layer's
 colour image) with two services: the ``ImageService3`` of that image and the layer's
 ``LanternaRelight`` block, so any IIIF viewer shows the colour image and Lanterna relights it.
+Every image service embeds its image's description (size, tiles, sizes), so a viewer needs no
+``info.json`` before the first tile (:mod:`lanterna.manifests.services`).
 Layers with an overlay add ``canvas.annotations`` (:mod:`lanterna.manifests.overlays`).
 
 Every manifest built here is checked against the official IIIF Presentation 3.0 JSON Schema
@@ -29,6 +31,7 @@ from iiif_prezi3 import (
 from lanterna.errors import LanternaInputError
 
 from .overlays import overlay_pages
+from .services import image_service, with_plane_descriptions
 from .validate import validate_manifest
 
 config.configs["helpers.auto_fields.AutoLang"].auto_lang = "en"
@@ -36,9 +39,15 @@ config.configs["helpers.auto_fields.AutoLang"].auto_lang = "en"
 _MEDIA_TYPES = {"jpg": "image/jpeg", "png": "image/png"}
 
 
-def build_manifest(desc: dict[str, Any]) -> dict[str, Any]:
-    """Return the manifest of dataset description ``desc`` as a JSON-ready dict."""
-    ds_url = f"{desc['baseUrl']}/{desc['name']}"
+def build_manifest(desc: dict[str, Any],
+                   infos: dict[str, dict[str, Any]] | None = None) -> dict[str, Any]:
+    """Return the manifest of dataset description ``desc`` as a JSON-ready dict.
+
+    ``infos`` maps image ids to their ``info.json``: every image service of an image found there
+    embeds its description (:mod:`lanterna.manifests.services`); the others are bare references.
+    """
+    infos = infos or {}
+    ds_url = f"{desc['baseUrl'].rstrip('/')}/{desc['name']}"
     width, height = desc["width"], desc["height"]
     manifest = Manifest(id=f"{ds_url}/manifest.json", label=desc["label"])
     if desc.get("summary"):
@@ -58,15 +67,15 @@ def build_manifest(desc: dict[str, Any]) -> dict[str, Any]:
             height=image.get("maxHeight", image["height"]),  # reduced level (docs/dataset-format)
             label=layer["label"],
         )
-        body.add_service(ServiceV3(id=service_url, type="ImageService3", profile="level0"))
-        body.add_service(ServiceV3(**layer["service"]))
+        body.add_service(ServiceV3(**image_service(service_url, infos.get(image_id))))
+        body.add_service(ServiceV3(**with_plane_descriptions(layer["service"], ds_url, infos)))
         bodies.append(body)
     page = AnnotationPage(id=f"{ds_url}/canvas/1/page/1")
     page.add_item(Annotation(id=f"{ds_url}/canvas/1/page/1/annotation/1", motivation="painting",
                              body=Choice(items=bodies), target=canvas.id))
     canvas.add_item(page)
     doc: dict[str, Any] = json.loads(manifest.json(indent=2))
-    pages = overlay_pages(desc)
+    pages = overlay_pages(desc, infos)
     if pages:
         doc["items"][0]["annotations"] = pages
     errors = validate_manifest(doc)

@@ -11,13 +11,19 @@ from __future__ import annotations
 
 from typing import Any
 
+from .services import image_service
+
 OVERLAY_TYPE = "LanternaOverlayLevel"
 OVERLAY_PROFILE = "urn:lanterna:overlay:1"
 MEDIA_FRAGMENTS = "http://www.w3.org/TR/media-frags/"
 
 
-def overlay_pages(desc: dict[str, Any]) -> list[dict[str, Any]]:
-    """Return the AnnotationPages of every layer of ``desc`` that has overlay level images."""
+def overlay_pages(desc: dict[str, Any],
+                  infos: dict[str, dict[str, Any]] | None = None) -> list[dict[str, Any]]:
+    """Return the AnnotationPages of every layer of ``desc`` that has overlay level images.
+
+    ``infos`` (image id → info.json) gives the level images' embedded descriptions.
+    """
     ds_url = f"{desc['baseUrl'].rstrip('/')}/{desc['name']}"
     canvas_id = f"{ds_url}/canvas/1"
     pages = []
@@ -30,8 +36,8 @@ def overlay_pages(desc: dict[str, Any]) -> list[dict[str, Any]]:
             "id": page_id,
             "type": "AnnotationPage",
             "label": {"en": [f"Annotations: {layer['label']}"]},
-            "items": [_annotation(ds_url, canvas_id, page_id, layer["id"], level, desc)
-                      for level in levels],
+            "items": [_annotation(ds_url, canvas_id, page_id, layer["id"], level, desc,
+                                  (infos or {}).get(level["image"])) for level in levels],
         })
     return pages
 
@@ -45,7 +51,7 @@ def _levels(layer: dict[str, Any]) -> list[dict[str, Any]]:
 
 
 def _annotation(ds_url: str, canvas_id: str, page_id: str, layer_id: str, entry: dict[str, Any],
-                desc: dict[str, Any]) -> dict[str, Any]:
+                desc: dict[str, Any], info: dict[str, Any] | None) -> dict[str, Any]:
     level = int(entry["level"])
     short, long = str(entry.get("short", "")), str(entry.get("long", ""))
     service_id = f"{ds_url}/iiif/{entry['image']}"
@@ -57,7 +63,7 @@ def _annotation(ds_url: str, canvas_id: str, page_id: str, layer_id: str, entry:
         "width": entry["width"],
         "height": entry["height"],
         "service": [
-            {"id": service_id, "type": "ImageService3", "profile": "level0"},
+            image_service(service_id, info),
             {"id": f"{ds_url}/layers/{layer_id}.json#overlay-{level}", "type": OVERLAY_TYPE,
              "profile": OVERLAY_PROFILE, "layer": layer_id, "level": level, "short": short,
              "long": long},

@@ -18,12 +18,15 @@
 // short line; `requests`: the URLs the page requested during the shot). One JSON line per shot goes to stdout. Exits non-zero on a page error, a console
 // error, or a step taking longer than timeoutMs (default 60 s).
 //
+// The page is opened with `wholeLevelMaxSide=0` (every image by its tiles, so pixel tests compare
+// against the tile files) unless the URL sets that parameter itself.
 // More spec keys (all optional):
 //   "routes": [{"match": "regex", "status": 404} | {"match": …, "hang": true} | {"match": …, "abort": "failed"}]
 //       answer matching requests with a fault instead of the server (see page-actions.mjs)
 //   "allowConsoleErrors": ["regex", …]  console errors matching one of these do not fail the run
 //   "expectReady": "reject"  the page is expected not to open the dataset: no shots; the error box is read
-//   "result": "/abs/result.json"  {readyError, errorBox, notices, routeHits, consoleErrors, pageErrors}
+//   "result": "/abs/result.json"  {readyError, errorBox, notices, routeHits, consoleErrors, pageErrors,
+//       requests: every URL the page requested, from its opening on}
 //   "mobile": true  a phone-like context (hasTouch, isMobile)
 //   "tileTimeoutMs": 3000  OpenSeadragon's tile time limit from then on (viewer.imageLoader.timeout)
 //   "launchArgs": ["--flag", …]  extra Chromium flags
@@ -174,7 +177,8 @@ async function main() {
     const cdp = touch || uses('pen') ? await context.newCDPSession(page) : null;
     const routeHits = await installRoutes(page, spec.routes ?? []);
     let requests = [];
-    page.on('request', (req) => { requests.push(req.url()); });
+    const allRequests = [];
+    page.on('request', (req) => { requests.push(req.url()); allRequests.push(req.url()); });
     page.on('pageerror', (err) => pageErrors.push(`page error: ${err.message}`));
     page.on('console', (msg) => {
       if (msg.type() === 'error') {
@@ -192,11 +196,13 @@ async function main() {
     const writeResult = async (extra) => {
       if (spec.result) {
         writeFileSync(spec.result, JSON.stringify({
-          ...extra, notices: await readNotices(page), routeHits, consoleErrors, pageErrors,
+          ...extra, notices: await readNotices(page), routeHits, consoleErrors, pageErrors, requests: allRequests,
         }));
       }
     };
-    await withTimeout(page.goto(spec.url, { waitUntil: 'load' }), timeoutMs, `loading ${spec.url}`);
+    const url = new URL(spec.url).searchParams.has('wholeLevelMaxSide') ? spec.url
+      : `${spec.url}${spec.url.includes('?') ? '&' : '?'}wholeLevelMaxSide=0`;
+    await withTimeout(page.goto(url, { waitUntil: 'load' }), timeoutMs, `loading ${url}`);
     if (spec.expectReady === 'reject') {
       const opened = await withTimeout(readOpenError(page), timeoutMs, 'waiting for the error message');
       // Give late errors (unhandled rejections, errors in handlers) a moment to show up.

@@ -24,6 +24,7 @@ import pyvips
 
 from lanterna.errors import LanternaInputError
 from lanterna.manifests.build import build_manifest
+from lanterna.manifests.services import with_plane_descriptions
 from lanterna.tiler.iiif.pyramid import vips_from_array, write_pyramid
 from lanterna.tiler.iiif.tiff import write_tiff
 
@@ -201,14 +202,43 @@ def write_documents(folder: Path, desc: dict[str, Any], out: Path) -> None:
     """Write ``desc`` as ``layers/*.json``, ``lanterna.json`` and ``manifest.json`` in folder.
 
     ``folder`` becomes the dataset ``out``: a number that is not finite is a one-line error
-    naming the file in ``out`` (see :func:`~.output.json_text`).
+    naming the file in ``out`` (see :func:`~.output.json_text`). The manifest and the layer
+    documents embed each image's description, read from its ``info.json`` in ``folder``
+    (:mod:`lanterna.manifests.services`); ``lanterna.json`` keeps the bare references.
     """
+    infos = image_infos(folder, desc, out)
+    ds_url = f"{desc['baseUrl'].rstrip('/')}/{desc['name']}"
     (folder / "layers").mkdir(exist_ok=True)
     for layer in desc["layers"]:
         name = f"layers/{layer['id']}.json"
-        _write_json(folder / name, layer["service"], out / name)
+        _write_json(folder / name, with_plane_descriptions(layer["service"], ds_url, infos),
+                    out / name)
     _write_json(folder / "lanterna.json", desc, out / "lanterna.json")
-    _write_json(folder / "manifest.json", build_manifest(desc), out / "manifest.json")
+    _write_json(folder / "manifest.json", build_manifest(desc, infos), out / "manifest.json")
+
+
+def image_infos(folder: Path, desc: dict[str, Any], out: Path) -> dict[str, dict[str, Any]]:
+    """The ``info.json`` of every image of ``desc`` found in ``folder``, by image id.
+
+    An image whose info.json is missing is left out (its services stay bare references); one
+    that is not a JSON object is a one-line error naming the file in ``out``.
+    """
+    infos: dict[str, dict[str, Any]] = {}
+    for image in desc.get("images", {}):
+        path = folder / "iiif" / image / "info.json"
+        try:
+            text = path.read_text()
+        except FileNotFoundError:
+            continue
+        try:
+            info = json.loads(text)
+        except ValueError as err:
+            raise LanternaInputError(out / "iiif" / image / "info.json",
+                                     f"not valid JSON ({err})") from None
+        if not isinstance(info, dict):
+            raise LanternaInputError(out / "iiif" / image / "info.json", "not a JSON object")
+        infos[image] = info
+    return infos
 
 
 @contextmanager

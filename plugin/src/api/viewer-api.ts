@@ -39,6 +39,12 @@ export interface CreateViewerOptions {
   /** `fetch` options for the manifest and info.json requests. */
   fetchInit?: RequestInit;
   /**
+   * Longest side (px) up to which an image loads each pyramid level as one whole image per plane
+   * group (its `sizes` file) instead of its tiles: one request per level and plane group. 0: tiles
+   * always. @default 1024
+   */
+  wholeLevelMaxSide?: number;
+  /**
    * Show notices over the viewer: the graphics context is lost, some tiles could not be loaded, an
    * error after `ready` (see {@link LanternaViewer.getNotices}). @default true
    */

@@ -1,5 +1,5 @@
 /**
- * The viewer page: `index.html?manifest=URL[&layer=ID][&mode=MODE]`. Exposes the viewer as
+ * The viewer page: `index.html?manifest=URL[&layer=ID][&mode=MODE][&wholeLevelMaxSide=PX]`. Exposes the viewer as
  * `window.lanterna`. A dataset that cannot be opened gives a message in the page (`#error`); errors
  * after that (switching layers, the lens) show as notices over the viewer.
  */
@@ -33,10 +33,10 @@ function showFatal(error: unknown, manifestUrl: string | null): void {
 }
 
 /** Open the viewer on `manifest` and wire the page's controls to it. */
-function open(manifest: string, layer: string | undefined, mode: string | null): void {
+function open(manifest: string, layer: string | undefined, mode: string | null, wholeLevelMaxSide?: number): void {
   let lanterna: LanternaViewer;
   try {
-    lanterna = createViewer({ element: 'viewer', manifest, layer });
+    lanterna = createViewer({ element: 'viewer', manifest, layer, wholeLevelMaxSide });
   } catch (error) {
     showFatal(error, manifest); // e.g. no WebGL2
     return;
@@ -117,6 +117,7 @@ if (!manifestParam) {
     showFatal(new Error(`The manifest parameter is not a URL: ${JSON.stringify(manifestParam)}`), null);
   }
   if (manifest !== null) {
-    open(manifest, params.get('layer') ?? undefined, params.get('mode'));
+    const side = Number(params.get('wholeLevelMaxSide') ?? Number.NaN);
+    open(manifest, params.get('layer') ?? undefined, params.get('mode'), Number.isFinite(side) ? side : undefined);
   }
 }

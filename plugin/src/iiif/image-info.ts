@@ -45,6 +45,40 @@ export function imageGeometry(info: unknown, url = 'info.json'): ImageGeometry {
   return { width, height, tileWidth, tileHeight, scaleFactors };
 }
 
+/** The Image API 3 context: OpenSeadragon builds Image API 3 URLs only for a document that has it. */
+export const IMAGE3_CONTEXT = 'http://iiif.io/api/image/3/context.json';
+
+/** An image whose description the manifest embeds: what its info.json would give, without a request. */
+export interface EmbeddedImage {
+  /** The description, completed as an info.json document (`@context`, `protocol`, `id`). */
+  readonly info: Record<string, unknown>;
+  readonly geometry: ImageGeometry;
+  /** Where it is in the manifest, for messages. */
+  readonly where: string;
+}
+
+/**
+ * The description a manifest's `ImageService3` reference embeds (`docs/dataset-format.md`), or null
+ * when it has none to use: not an `ImageService3`, or `width`, `height` or `tiles` absent (the
+ * viewer then fetches the image's info.json). A description that is there is checked as strictly as
+ * a fetched info.json.
+ *
+ * @param service - the service object (with a string `id`)
+ * @param where - its place in the manifest, naming it in errors
+ * @throws {@link ImageInfoError} a malformed description (e.g. `tiles` without `scaleFactors`)
+ */
+export function embeddedImage(service: Record<string, unknown>, where: string): EmbeddedImage | null {
+  if (service.type !== 'ImageService3' || service.width === undefined || service.height === undefined
+    || service.tiles === undefined) {
+    return null;
+  }
+  const geometry = imageGeometry(service, where);
+  const id = String(service.id).replace(/\/+$/, '');
+  return {
+    info: { ...service, '@context': IMAGE3_CONTEXT, protocol: 'http://iiif.io/api/image', id }, geometry, where,
+  };
+}
+
 /**
  * Check that every plane group shares one geometry, and that it matches the layer's size.
  *

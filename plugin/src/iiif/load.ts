@@ -1,5 +1,6 @@
 /**
- * Fetch a manifest and the `info.json` of each plane group of its relight layers.
+ * Fetch a manifest and the image information of each plane group of its relight layers: the
+ * description the manifest embeds, else the group's `info.json`.
  */
 import { FetchError, ImageInfoError, MismatchedPlanesError } from './errors';
 import { commonGeometry, imageGeometry, type ImageGeometry } from './image-info';
@@ -7,7 +8,7 @@ import { parseManifest, type ManifestInfo, type ManifestLayer } from './manifest
 
 /** A layer with its plane groups' image information, ready to build a tile source. */
 export interface LoadedLayer extends ManifestLayer {
-  /** The info.json documents, in plane order. */
+  /** The info.json documents (embedded in the manifest, or fetched), in plane order. */
   readonly infos: Record<string, unknown>[];
   /** Their common tiling geometry. */
   readonly geometry: ImageGeometry;
@@ -91,17 +92,21 @@ export function cachedInfo(url: string, init: RequestInit | undefined, cache: In
 }
 
 /**
- * Load the info.json of every plane group of a layer (`{service.id}/info.json`) and check that the
- * groups share one geometry matching the relight block.
+ * The image information of every plane group of a layer: the description its service embeds in the
+ * manifest, else its `{service.id}/info.json` (fetched through `cache`); checked that the groups
+ * share one geometry matching the relight block.
  */
 export async function loadLayer(layer: ManifestLayer, init?: RequestInit, cache: InfoCache = new Map()):
   Promise<LoadedLayer> {
-  const urls = layer.layer.planes.map((plane) => `${plane.serviceId}/info.json`);
-  const infos = await Promise.all(urls.map((url) => cachedInfo(url, init, cache)));
-  const geometries = infos.map((info, i) => imageGeometry(info, urls[i]));
+  const planes = layer.layer.planes;
+  const urls = planes.map((plane) => `${plane.serviceId}/info.json`);
+  const infos = await Promise.all(planes.map((plane, i) => (plane.embedded
+    ? Promise.resolve(plane.embedded.info) : cachedInfo(urls[i] ?? '', init, cache))));
+  const geometries = infos.map((info, i) => planes[i]?.embedded?.geometry ?? imageGeometry(info, urls[i]));
+  const names = planes.map((plane, i) => plane.embedded?.where ?? urls[i] ?? '');
   let geometry: ImageGeometry;
   try {
-    geometry = commonGeometry(geometries, layer.layer, urls);
+    geometry = commonGeometry(geometries, layer.layer, names);
   } catch (error) {
     if (error instanceof MismatchedPlanesError) {
       throw new MismatchedPlanesError(`layer ${layer.id}: ${error.message}`, { cause: error });

@@ -4,6 +4,7 @@
  * `LanternaOverlayLevel` service. Pure: no DOM, no network.
  */
 import { OverlayError } from './errors';
+import { embeddedImage, type EmbeddedImage } from './image-info';
 import { type Json, isRecord, asArray } from './json';
 
 /** `type` of the machine-readable overlay level block. */
@@ -26,6 +27,8 @@ export interface OverlayLevel {
   /** The level image's size: `ceil(W/2^L) × ceil(H/2^L)`. */
   readonly width: number;
   readonly height: number;
+  /** The level image's description embedded in the manifest, or null: then its info.json is fetched. */
+  readonly embedded: EmbeddedImage | null;
 }
 
 function text(x: unknown): string {
@@ -68,6 +71,7 @@ function parseLevel(annotationId: string, image: Json, block: Json, bodies: read
     serviceId: String(imageService.id).replace(/\/+$/, ''),
     width,
     height,
+    embedded: embeddedImage(imageService, `manifest: ${where}: the level image's service`),
   };
 }
 

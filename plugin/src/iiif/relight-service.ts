@@ -4,6 +4,7 @@
  */
 import { BASES } from '../math/ptm-basis';
 import { RelightServiceError } from './errors';
+import { embeddedImage, type EmbeddedImage } from './image-info';
 import { isRecord } from './json';
 
 /** Service `type` of the relight service block. */
@@ -48,6 +49,8 @@ export interface PlaneGroup {
   readonly scale: readonly number[];
   /** Per-channel bias, in texel/255 units (same length as `channels`). */
   readonly bias: readonly number[];
+  /** The image description embedded in `service`, or null: then the viewer fetches its info.json. */
+  readonly embedded: EmbeddedImage | null;
 }
 
 /** A validated relightable layer. */
@@ -119,7 +122,7 @@ function positiveInt(x: unknown, what: string): number {
   return x;
 }
 
-function parsePlane(p: unknown, i: number): PlaneGroup {
+function parsePlane(p: unknown, i: number, blockId: string): PlaneGroup {
   if (!isRecord(p) || !isRecord(p.service) || typeof p.service.id !== 'string' || p.service.id === '') {
     throw new RelightServiceError(`plane ${i}: missing service.id`);
   }
@@ -139,6 +142,7 @@ function parsePlane(p: unknown, i: number): PlaneGroup {
     channels: channels,
     scale: numbers(p.scale, n, `plane ${i}: scale`),
     bias: numbers(p.bias, n, `plane ${i}: bias`),
+    embedded: embeddedImage(p.service, `manifest: ${blockId || RELIGHT_SERVICE_TYPE} planes[${i}].service`),
   };
 }
 
@@ -197,7 +201,8 @@ function parseGlossLimits(x: unknown): readonly [number, number] {
  * Validate a relight service block and return it typed.
  *
  * @param block - the JSON object from the manifest's `service` list (or a layer document)
- * @throws {@link RelightServiceError} when any field breaks the contract
+ * @throws {@link RelightServiceError} when any field breaks the contract; {@link ImageInfoError} when a
+ *   plane service embeds a malformed image description
  */
 export function parseRelightService(block: unknown): RelightLayer {
   if (!isRecord(block)) {
@@ -246,7 +251,7 @@ export function parseRelightService(block: unknown): RelightLayer {
   if (!Array.isArray(block.planes)) {
     throw new RelightServiceError('planes must be an array');
   }
-  const planes = block.planes.map(parsePlane);
+  const planes = block.planes.map((p, i) => parsePlane(p, i, id));
   checkChannels(layerType, colorspace, terms, planes);
   return { id, layerType, colorspace, width, height, planes, terms, glossLimits, inputColorSpace };
 }

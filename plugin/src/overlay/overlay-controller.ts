@@ -8,6 +8,7 @@ import { cachedInfo, type InfoCache } from '../iiif/load';
 import { imageGeometry } from '../iiif/image-info';
 import type { ManifestLayer } from '../iiif/manifest';
 import { overlayAt, type OverlayLevel } from '../iiif/overlays';
+import { wholeLevelTiling } from '../iiif/whole-levels';
 import { addBundleItem } from '../tiles/add-item';
 import { overlayItemWidth } from './overlay-state';
 
@@ -19,6 +20,8 @@ export interface OverlayControllerOptions {
   readonly fetchInit?: RequestInit;
   /** info.json documents already requested. */
   readonly infoCache: InfoCache;
+  /** Longest side (px) up to which an overlay level image loads by whole levels; 0: tiles always. */
+  readonly wholeLevelMaxSide: number;
   /** Called once per new overlay item (e.g. to tell the drawer how to draw it). */
   register(item: OpenSeadragon.TiledImage, level: OverlayLevel): void;
   /** Called when an overlay item could not be opened. */
@@ -85,10 +88,13 @@ export class OverlayController {
     if (!pending) {
       pending = (async () => {
         const url = `${level.serviceId}/info.json`;
-        const json = await cachedInfo(url, this.#options.fetchInit, this.#options.infoCache);
+        const json = level.embedded?.info ?? await cachedInfo(url, this.#options.fetchInit, this.#options.infoCache);
+        const geometry = level.embedded?.geometry ?? imageGeometry(json, url);
+        const whole = wholeLevelTiling([json], geometry, this.#options.wholeLevelMaxSide);
         const item = await addBundleItem(this.#viewer, {
-          infos: [json],
-          geometry: imageGeometry(json, url),
+          infos: whole?.infos ?? [json],
+          geometry: whole?.geometry ?? geometry,
+      cutoffLevel: whole?.cutoffLevel,
           formats: ['png'],
           width: overlayItemWidth(level, canvasWidth),
           opacity: 0,

@@ -21,6 +21,8 @@ export interface BundleItemOptions {
   readonly opacity: number;
   /** What the item is, for error messages. */
   readonly what: string;
+  /** OpenSeadragon's coverage cut-off level, when the tiling's own is wrong (whole levels). */
+  readonly cutoffLevel?: number;
 }
 
 /** Add the item at (0, 0); resolves with the TiledImage once OpenSeadragon has opened it. */
@@ -30,6 +32,7 @@ export function addBundleItem(viewer: OpenSeadragon.Viewer, options: BundleItemO
     geometry: options.geometry,
     formats: options.formats,
     previewIndex: options.previewIndex ?? 0,
+    cutoffLevel: options.cutoffLevel,
   });
   return new Promise((resolve, reject) => {
     viewer.addTiledImage({

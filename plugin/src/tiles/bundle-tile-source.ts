@@ -25,6 +25,11 @@ export interface BundleTileSourceOptions {
   readonly retries?: number;
   /** Wait before a plane's first retry, doubled for each next one (ms). @default 500 */
   readonly retryDelayMs?: number;
+  /**
+   * The level {@link BundleTileSource.getClosestLevel} answers (OpenSeadragon's coverage cut-off),
+   * for a tiling whose own answer would be wrong (whole levels). @default OpenSeadragon's answer
+   */
+  readonly cutoffLevel?: number;
 }
 
 /** Per-job state kept on the OSD ImageJob's userData. */
@@ -83,6 +88,7 @@ export class BundleTileSource extends OpenSeadragon.TileSource {
   declare credentials: RequestCredentials;
   declare retries: number;
   declare retryDelayMs: number;
+  declare cutoffLevel: number | undefined;
 
   constructor(options: BundleTileSourceOptions) {
     const g = options.geometry;
@@ -106,6 +112,11 @@ export class BundleTileSource extends OpenSeadragon.TileSource {
     this.credentials = options.credentials ?? 'same-origin';
     this.retries = options.retries ?? 2;
     this.retryDelayMs = options.retryDelayMs ?? 500;
+    this.cutoffLevel = options.cutoffLevel;
+  }
+
+  override getClosestLevel(): number {
+    return this.cutoffLevel ?? super.getClosestLevel();
   }
 
   private get primary(): IIIFSource {

@@ -7,6 +7,8 @@ import { UnknownLayerError, type LayerInfo } from '../api/viewer-api';
 import { loadLayer, type InfoCache, type LoadedLayer } from '../iiif/load';
 import type { ManifestLayer } from '../iiif/manifest';
 import type { RelightLayer } from '../iiif/relight-service';
+import type { ImageGeometry } from '../iiif/image-info';
+import { wholeLevelTiling, type WholeLevelView } from '../iiif/whole-levels';
 import { layerKindOf, type LayerKind } from '../layers/layer-kinds';
 import { currentLevel, imagePxPerDevicePx, maxLevelOf } from '../math/levels';
 import { addBundleItem } from '../tiles/add-item';
@@ -27,6 +29,8 @@ export interface LayerSlotsOptions {
   readonly fetchInit?: RequestInit;
   /** info.json documents already requested. */
   readonly infoCache: InfoCache;
+  /** Longest side (px) up to which a layer loads by whole levels (`wholeLevelTiling`); 0: tiles always. */
+  readonly wholeLevelMaxSide: number;
   /** Called once per new layer item (e.g. to tell the drawer how to draw it). */
   register(item: OpenSeadragon.TiledImage, layer: RelightLayer): void;
 }
@@ -96,9 +100,12 @@ export class LayerSlots {
 
   /** Add a (invisible) TiledImage of a slot's loaded planes; `what` names it in errors. */
   addItem(slot: LayerSlot, loaded: LoadedLayer, what: string): Promise<OpenSeadragon.TiledImage> {
+    const whole = wholeLevelTiling(loaded.infos, loaded.geometry, this.#options.wholeLevelMaxSide,
+      openingView(this.#viewer, loaded.geometry));
     return addBundleItem(this.#viewer, {
-      infos: loaded.infos,
-      geometry: loaded.geometry,
+      infos: whole?.infos ?? loaded.infos,
+      geometry: whole?.geometry ?? loaded.geometry,
+      cutoffLevel: whole?.cutoffLevel,
       formats: loaded.layer.planes.map((p) => p.format),
       previewIndex: slot.kind.previewPlane,
       opacity: 0,
@@ -118,6 +125,19 @@ export class LayerSlots {
     slot.item.catch(() => { slot.item = undefined; });
     return slot.item;
   }
+}
+
+/**
+ * The on-screen width of a layer item about to open (layers are 1 wide in viewport units): at the
+ * current zoom, or for the first item at the home view OpenSeadragon will fit it to.
+ */
+function openingView(viewer: OpenSeadragon.Viewer, geometry: ImageGeometry): WholeLevelView {
+  const container = viewer.viewport.getContainerSize();
+  const displayWidth = viewer.world.getItemCount() === 0
+    ? Math.min(container.x, container.y * geometry.width / geometry.height)
+    : viewer.viewport.getZoom(false) * container.x;
+  const { minPixelRatio } = viewer as unknown as { minPixelRatio?: number };
+  return { displayWidth, minPixelRatio: minPixelRatio ?? 0.5 };
 }
 
 /** The current level (`docs/annotations.md`), from the zoom of `slot`'s item (0 when it is not open). */

@@ -18,6 +18,8 @@ export interface OverlayWiringOptions {
   readonly fetchInit?: RequestInit;
   /** info.json documents already requested. */
   readonly infoCache: InfoCache;
+  /** Longest side (px) up to which an overlay level image loads by whole levels; 0: tiles always. */
+  readonly wholeLevelMaxSide: number;
   /** Called once per new overlay item (e.g. to tell the drawer how to draw it). */
   register(item: OpenSeadragon.TiledImage): void;
   /** Called when an overlay item could not be opened. */
@@ -36,6 +38,7 @@ export class OverlayWiring {
     this.#items = new OverlayController(viewer, {
       fetchInit: options.fetchInit,
       infoCache: options.infoCache,
+      wholeLevelMaxSide: options.wholeLevelMaxSide,
       register: (item) => { options.register(item); },
       onError: (error) => { options.onError(error); },
     });

@@ -12,6 +12,7 @@ import { RenderModeError, type CreateViewerOptions, type LanternaViewer } from '
 import { LanternaError } from '../errors';
 import { fetchJson, type InfoCache } from '../iiif/load';
 import { parseManifest, type ManifestInfo } from '../iiif/manifest';
+import { DEFAULT_WHOLE_LEVEL_MAX_SIDE } from '../iiif/whole-levels';
 import { initialLens } from '../lens/lens-state';
 import { lightFromProjection, type Light } from '../math/light';
 import { overlayState } from '../overlay/overlay-controller';
@@ -93,9 +94,11 @@ export function createViewer(options: CreateViewerOptions): LanternaViewer {
     changed();
   };
 
+  const wholeLevelMaxSide = options.wholeLevelMaxSide ?? DEFAULT_WHOLE_LEVEL_MAX_SIDE;
   const slots = new LayerSlots(viewer, {
     fetchInit: options.fetchInit,
     infoCache,
+    wholeLevelMaxSide,
     register: (item, layer) => { drawer().setLayer(item, layer); },
   });
 
@@ -122,6 +125,7 @@ export function createViewer(options: CreateViewerOptions): LanternaViewer {
     hypertext: options.hypertext !== false,
     fetchInit: options.fetchInit,
     infoCache,
+    wholeLevelMaxSide,
     register: (item) => { drawer().setOverlayItem(item); },
     onError: reportError,
   });

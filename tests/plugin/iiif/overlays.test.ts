@@ -21,7 +21,7 @@ describe('overlay levels from canvas.annotations', () => {
     expect(levels.map((l) => l.level)).toEqual([0, 2]);
     expect(levels[1]).toEqual({
       layer: 'ptm', level: 2, short: 'Whole figure', long: '<p>The <b>ushabti</b>.</p>',
-      serviceId: `${BASE}/iiif/ptm_ov2`, width: 128, height: 256,
+      serviceId: `${BASE}/iiif/ptm_ov2`, width: 128, height: 256, embedded: null,
     });
     expect(overlayAt(levels, 2)?.short).toBe('Whole figure');
     expect(overlayAt(levels, 1)).toBeNull();

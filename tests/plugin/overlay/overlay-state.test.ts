@@ -18,7 +18,7 @@ describe('overlay state and placement', () => {
 
   it('places level pixel i over full-resolution pixels [i·2^L, (i+1)·2^L)', () => {
     const level = (l: number, w: number): Parameters<typeof overlayItemWidth>[0] => ({
-      layer: 'ptm', level: l, short: '', long: '', serviceId: 'x', width: w, height: 1,
+      layer: 'ptm', level: l, short: '', long: '', serviceId: 'x', width: w, height: 1, embedded: null,
     });
     expect(overlayItemWidth(level(0, 900), 900)).toBe(1);
     expect(overlayItemWidth(level(2, 225), 900)).toBe(1);

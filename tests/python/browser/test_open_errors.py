@@ -21,6 +21,7 @@ import pytest
 
 from tests.python.fixtures.browser import open_failing
 from tests.python.fixtures.faults import NoCorsServer, make_noisy_dataset
+from tests.python.fixtures.manifests import without_descriptions
 from tests.python.fixtures.servers import LiveServer
 
 pytestmark = pytest.mark.browser
@@ -84,6 +85,32 @@ def relight_blocks_changed(manifest: dict[str, Any],
     return walk(manifest)
 
 
+def services_changed(manifest: dict[str, Any],
+                     change: Callable[[dict[str, Any]], dict[str, Any]]) -> Any:
+    """The manifest with ``change`` applied to each ImageService3 reference."""
+    def walk(x: Any) -> Any:
+        if isinstance(x, dict):
+            y = {k: walk(v) for k, v in x.items()}
+            return change(y) if x.get("type") == "ImageService3" else y
+        if isinstance(x, list):
+            return [walk(v) for v in x]
+        return x
+    return walk(manifest)
+
+
+def bare(s: Served, *routes: dict[str, Any]) -> tuple[str, list[dict[str, Any]]]:
+    """Open the manifest without the embedded image descriptions (the viewer fetches info.json)."""
+    older = without_descriptions(s.manifest)
+    return s.manifest_url, [exactly(s.manifest_url, **json_body(older)), *routes]
+
+
+def c1_embeds(s: Served, **changes: Any) -> tuple[str, list[dict[str, Any]]]:
+    """Open the manifest with base_c1's embedded description changed."""
+    doc = services_changed(s.manifest, lambda svc: {**svc, **changes}
+                           if svc["id"].endswith("/base_c1") else svc)
+    return s.manifest_url, [exactly(s.manifest_url, **json_body(doc))]
+
+
 @dataclass
 class Case:
     """How to break the page: the manifest URL to open and the routes, from the served dataset."""
@@ -128,19 +155,25 @@ CASES: dict[str, Case] = {
         "RelightServiceError", "unsupported layerType", "Lanterna dataset format"),
     "manifest-without-cors": Case(lambda s: ("NOCORS", []), "FetchError", "CORS",
                                   "Access-Control-Allow-Origin"),
-    "info-404": Case(lambda s: (s.manifest_url, [exactly(s.info_url, status=404)]),
+    "info-404": Case(lambda s: bare(s, exactly(s.info_url, status=404)),
                      "FetchError", "base_c1/info.json", "no document at this URL"),
-    "info-not-json": Case(lambda s: (s.manifest_url, [exactly(s.info_url, status=200,
-                                                              body="width=300")]),
+    "info-not-json": Case(lambda s: bare(s, exactly(s.info_url, status=200, body="width=300")),
                           "FetchError", "base_c1/info.json is not valid JSON", "JSON document"),
     "info-without-tiles": Case(
-        lambda s: (s.manifest_url, [exactly(s.info_url, **json_body(
-            {k: v for k, v in s.info.items() if k != "tiles"}))]),
+        lambda s: bare(s, exactly(s.info_url, **json_body(
+            {k: v for k, v in s.info.items() if k != "tiles"}))),
         "ImageInfoError", "base_c1/info.json", "info.json is not a usable"),
     "info-other-size": Case(
-        lambda s: (s.manifest_url, [exactly(s.info_url, **json_body(
-            {**s.info, "width": s.info["width"] + 1}))]),
+        lambda s: bare(s, exactly(s.info_url, **json_body(
+            {**s.info, "width": s.info["width"] + 1}))),
         "MismatchedPlanesError", "differs from plane group 0", "info.json is not a usable"),
+    "embedded-without-scale-factors": Case(
+        lambda s: c1_embeds(s, tiles=[{"width": 256, "height": 256}]),
+        "ImageInfoError", "layers/base.json planes[1].service: tiles[0] needs width and "
+        "scaleFactors", "info.json is not a usable"),
+    "embedded-other-size": Case(
+        lambda s: c1_embeds(s, width=s.info["width"] + 1),
+        "MismatchedPlanesError", "planes[1].service: 301×200", "info.json is not a usable"),
     "no-webgl": Case(lambda s: (s.manifest_url, []), None, "WebGL2 is not available",
                      "needs WebGL2", launch=("--disable-webgl",)),
     "no-manifest-parameter": Case(lambda s: (None, []), None, "No manifest given", ""),

@@ -1,14 +1,17 @@
 """Real Chromium: a dataset whose other layers or overlays fail to load keeps working.
 
-The lens dataset opens on its PTM layer ``base``; the ``info.json`` of the image layer ``second``
-and of ``base``'s level-0 overlay answer 404. Switching to ``second`` in the panel, showing
-``second`` in the lens, and the overlay of the current level all fail: each gives an error notice,
-the view keeps showing ``base`` (exactly the reference), the layer menu shows ``base`` again, and
-waiting for the view to load still ends (it used to wait forever for the lens layer).
+The lens dataset, with a manifest that does not embed the image descriptions (so the viewer fetches
+each image's ``info.json``), opens on its PTM layer ``base``; the ``info.json`` of the image layer
+``second`` and of ``base``'s level-0 overlay answer 404. Switching to ``second`` in the panel,
+showing ``second`` in the lens, and the overlay of the current level all fail: each gives an error
+notice, the view keeps showing ``base`` (exactly the reference), the layer menu shows ``base``
+again, and waiting for the view to load still ends (it used to wait forever for the lens layer).
 """
 
 from __future__ import annotations
 
+import json
+import shutil
 from collections.abc import Iterator
 
 import numpy as np
@@ -17,6 +20,7 @@ import pytest
 
 from tests.python.fixtures import lens
 from tests.python.fixtures.lens import Dataset, LensShot
+from tests.python.fixtures.manifests import without_descriptions
 
 pytestmark = pytest.mark.browser
 
@@ -28,6 +32,12 @@ ROUTES = [{"match": r"/iiif/(second|base_ov0)/info\.json$", "status": 404, "body
 def partial(lens_dataset: Dataset) -> Iterator[list[tuple[LensShot, npt.NDArray[np.uint8]]]]:
     out = lens_dataset.root / "partial"
     out.mkdir()
+    # a copy of the dataset whose manifest is bare (the embedded descriptions would spare the
+    # info.json requests that fail here)
+    bare = Dataset(out / "bare-root", lens_dataset.blocks)
+    shutil.copytree(lens_dataset.dir, bare.dir)
+    manifest = json.loads((bare.dir / "manifest.json").read_text())
+    (bare.dir / "manifest.json").write_text(json.dumps(without_descriptions(manifest)))
     shots = [
         LensShot(lens.LIGHT, lens.region(1), out / "overlay.rgba", layer="base", overlays=True),
         LensShot(lens.LIGHT, lens.region(1), out / "switch.rgba", extra={"read": [LAYER_MENU]},
@@ -37,7 +47,7 @@ def partial(lens_dataset: Dataset) -> Iterator[list[tuple[LensShot, npt.NDArray[
                  lens={"enabled": True, "layer": "second", "center": [128, 96], "radius": 50}),
     ]
     options = {"routes": ROUTES, "allowConsoleErrors": [r"^Failed to load resource"]}
-    frames = lens.shots_and_frames(lens_dataset, shots, options=options)
+    frames = lens.shots_and_frames(bare, shots, options=options)
     yield list(zip(shots, frames, strict=True))
 
 

@@ -30,6 +30,28 @@ def test_written_manifest_is_valid(kinds: dict[str, Path], kind: str) -> None:
     assert validate_manifest(manifest(kinds[kind])) == []
 
 
+def _image_services(node: Any) -> list[dict[str, Any]]:
+    if isinstance(node, list):
+        return [s for item in node for s in _image_services(item)]
+    if not isinstance(node, dict):
+        return []
+    found = [node] if node.get("type") == "ImageService3" else []
+    return found + [s for value in node.values() for s in _image_services(value)]
+
+
+@pytest.mark.parametrize("kind", KINDS)
+def test_every_image_service_embeds_its_info_json_description(kinds: dict[str, Path],
+                                                               kind: str) -> None:
+    # painting images, relight plane groups and overlay levels (written by a rewrite) alike
+    services = _image_services(manifest(kinds[kind]))
+    assert len(services) >= 2
+    for service in services:
+        ident = service["id"].rsplit("/", 1)[1]
+        info = json.loads((kinds[kind] / "iiif" / ident / "info.json").read_text())
+        assert service == {"type": "ImageService3", **{
+            k: v for k, v in info.items() if k not in ("@context", "protocol")}}
+
+
 def test_the_kinds_cover_every_layer_type_and_an_overlay(kinds: dict[str, Path]) -> None:
     types = set()
     for folder in kinds.values():

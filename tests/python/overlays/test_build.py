@@ -126,11 +126,14 @@ def test_manifest_has_one_supplementing_page_per_annotated_layer(built: Path) ->
         "selector": {"type": "FragmentSelector", "conformsTo": "http://www.w3.org/TR/media-frags/",
                      "value": f"xywh=0,0,{W},{H}"}}
     image, text = first["body"]
+    info = json.loads((built / "iiif/vis_ov0/info.json").read_text())
     assert image == {
         "id": f"{BASE}/obj/iiif/vis_ov0/full/max/0/default.png", "type": "Image",
         "format": "image/png", "width": W, "height": H,
         "service": [
-            {"id": f"{BASE}/obj/iiif/vis_ov0", "type": "ImageService3", "profile": "level0"},
+            {"id": f"{BASE}/obj/iiif/vis_ov0", "type": "ImageService3", "profile": "level0",
+             "width": W, "height": H, "sizes": info["sizes"], "tiles": info["tiles"],
+             "preferredFormats": ["png"], "extraFormats": ["png"]},
             {"id": f"{BASE}/obj/layers/vis.json#overlay-0", "type": "LanternaOverlayLevel",
              "profile": "urn:lanterna:overlay:1", "layer": "vis", "level": 0,
              "short": "Strokes", "long": "<p>Red <b>strokes</b></p>"}]}
