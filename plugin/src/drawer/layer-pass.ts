@@ -1,8 +1,10 @@
 /**
  * The layer pass: one relightable item drawn in a render mode, either straight into its target
  * (`direct` stage) or, for the unsharp modes, through the screen-space filter: the quantity for the
- * whole view, the box passes, then the `combine` stage into the target. Also decides which
- * programs a layer needs in a mode, so that they can be compiled ahead of a frame.
+ * whole view, the box passes, then the `combine` stage into the target. A filtered quantity that
+ * does not read the light is kept and reused while only the light (or a parameter the combine
+ * stage reads) changes (`QuantityCache`). Also decides which programs a layer needs in a mode, so
+ * that they can be compiled ahead of a frame.
  */
 import * as twgl from 'twgl.js';
 import type { Stage } from '../gl/glsl/modes.glsl';
@@ -13,9 +15,12 @@ import type { ResolvedLayer } from '../layers/resolved-layer';
 import type { Light } from '../math/light';
 import type { Mat3 } from '../math/matrix';
 import { modeFilter } from '../render/filter-plan';
+import { combinesFromView, quantityExtras, quantityKey, quantityKeepsUnderLight } from '../render/quantity-key';
 import { DEFAULT_RENDER_MODE, type RenderMode } from '../render/modes';
 import type { RenderParams } from '../render/params';
+import { ObjectIds, QuantityCache } from './quantity-cache';
 import { ScreenFilter } from './screen-filter';
+import { ViewCombine } from './view-combine';
 
 /** A scissor box `[x, y, w, h]` in device px, y up. */
 export type ScissorBox = readonly [number, number, number, number];
@@ -36,7 +41,7 @@ export interface LayerDraw<T> {
   readonly light: Light;
   /** The item's tiles, coarse level first. */
   readonly tiles: readonly T[];
-  /** A tile's quad, or null when it has no texture (called as each tile is drawn, once per stage). */
+  /** A tile's quad, or null when it has no texture (called once per tile and draw). */
   quadOf(tile: T): TileQuad | null;
   /** The sampler of the planes (smoothing on or off). */
   readonly sampler: WebGLSampler;
@@ -46,18 +51,31 @@ export interface LayerDraw<T> {
   readonly box: ScissorBox | null;
 }
 
-/** The stages a mode is drawn in: `direct`, or `quantity` then `combine` around the screen filter. */
+/**
+ * The layer-program stages a mode is drawn in: `direct`, or `quantity` then `combine` around the
+ * screen filter (only `quantity` for a mode combined from the view, by {@link ViewCombine}).
+ */
 export function modeStages(mode: RenderMode): Stage[] {
-  return modeFilter(mode) ? ['quantity', 'combine'] : ['direct'];
+  if (!modeFilter(mode)) {
+    return ['direct'];
+  }
+  return combinesFromView(mode) ? ['quantity'] : ['quantity', 'combine'];
 }
 
-/** The layer programs and the screen filter of one GL context. */
+/** Stands for the canvas (a null target) in the slot names of the kept quantities. */
+const CANVAS = {};
+
+/** The layer programs, the screen filter and the kept quantities of one GL context. */
 export class LayerPass {
   private readonly programs: ProgramCache;
   private screenFilter: ScreenFilter | null = null;
+  private quantities: QuantityCache | null = null;
+  private viewCombine: ViewCombine;
+  private readonly ids = new ObjectIds();
 
   constructor(private readonly gl: WebGL2RenderingContext) {
     this.programs = new ProgramCache(gl);
+    this.viewCombine = new ViewCombine(gl);
   }
 
   /**
@@ -73,6 +91,9 @@ export class LayerPass {
     for (const stage of modeStages(mode)) {
       this.programs.get(layer.program, mode, stage, gammaOne);
     }
+    if (combinesFromView(mode)) {
+      this.viewCombine.program(gammaOne);
+    }
   }
 
   /** Relight one item (see {@link LayerDraw}). */
@@ -83,6 +104,13 @@ export class LayerPass {
     const uniforms = layerUniforms(d.layer, d.light, d.params);
     const gammaOne = d.params.gamma === 1;
     const filter = modeFilter(mode);
+    const quads: TileQuad[] = [];
+    for (const tile of d.tiles) {
+      const quad = d.quadOf(tile);
+      if (quad) {
+        quads.push(quad);
+      }
+    }
     const { box } = d;
     const bindTarget = (): void => {
       gl.bindFramebuffer(gl.FRAMEBUFFER, d.target);
@@ -94,36 +122,64 @@ export class LayerPass {
     };
     if (!filter) {
       bindTarget();
-      this.drawTiles(d, this.programs.get(spec, mode, 'direct', gammaOne), uniforms, null);
+      this.drawTiles(d.sampler, quads, this.programs.get(spec, mode, 'direct', gammaOne), uniforms, null);
       gl.disable(gl.SCISSOR_TEST);
       return;
     }
-    // Screen-space unsharp masking: quantity for the whole view, box passes, then combine.
+    // Screen-space unsharp masking: quantity for the whole view, box passes (or the kept result of
+    // both, when the quantity does not read the light and nothing it reads changed), then combine.
     gl.disable(gl.SCISSOR_TEST);
     this.screenFilter ??= new ScreenFilter(gl);
-    this.screenFilter.beginQuantity(gl.drawingBufferWidth, gl.drawingBufferHeight);
-    this.drawTiles(d, this.programs.get(spec, mode, 'quantity', gammaOne), uniforms, null);
-    const filtered = this.screenFilter.filter(filter);
+    this.quantities ??= new QuantityCache(this.screenFilter);
+    const program = this.programs.get(spec, mode, 'quantity', gammaOne);
+    const width = gl.drawingBufferWidth;
+    const height = gl.drawingBufferHeight;
+    const ids = this.ids;
+    const key = quantityKeepsUnderLight(mode, d.layer.kind.lit)
+      ? quantityKey({
+        program: ids.of(program), layer: ids.of(d.layer), filter, width, height, sampler: ids.of(d.sampler),
+        tiles: quads.map((q) => ({ texture: ids.of(q.texture), matrix: q.matrix, texScale: q.texScale })),
+      })
+      : null;
+    const slot = `${ids.of(d.target ?? CANVAS)}/${ids.of(d.layer)}`;
+    const { targets, fresh } = this.quantities.acquire(slot, key, width, height, quantityExtras(mode));
+    if (!fresh) {
+      this.screenFilter.beginQuantity(targets);
+      this.drawTiles(d.sampler, quads, program, uniforms, null);
+      this.screenFilter.filter(targets.filtered, filter);
+      if (key !== null) {
+        this.quantities.keep(slot, key);
+      }
+    }
     bindTarget();
-    this.drawTiles(d, this.programs.get(spec, mode, 'combine', gammaOne), uniforms, filtered);
+    if (combinesFromView(mode)) {
+      this.viewCombine.draw(targets, uniforms, gammaOne);
+    } else {
+      const combine = this.programs.get(spec, mode, 'combine', gammaOne);
+      this.drawTiles(d.sampler, quads, combine, uniforms, targets.filtered.texture);
+    }
     gl.disable(gl.SCISSOR_TEST);
   }
 
-  /** Forget the programs and the filter (after a context loss; they went with the context). */
+  /** Forget the programs, the filter and the kept quantities (after a context loss: they went with the context). */
   forget(): void {
     this.programs.forget();
+    this.viewCombine = new ViewCombine(this.gl);
     this.screenFilter = null;
+    this.quantities = null;
   }
 
-  /** Free the programs and the filter's targets. */
+  /** Free the programs, the filter's and the kept quantities' targets. */
   destroy(): void {
     this.programs.clear();
+    this.viewCombine.destroy();
+    this.quantities?.destroy();
     this.screenFilter?.destroy();
   }
 
   /** Draw an item's tiles (coarse level first, finer over them: painter's algorithm, opaque). */
-  private drawTiles<T>(d: LayerDraw<T>, programInfo: twgl.ProgramInfo, uniforms: LayerUniforms,
-    filtered: WebGLTexture | null): void {
+  private drawTiles(sampler: WebGLSampler, quads: readonly TileQuad[], programInfo: twgl.ProgramInfo,
+    uniforms: LayerUniforms, filtered: WebGLTexture | null): void {
     const gl = this.gl;
     gl.useProgram(programInfo.program);
     twgl.setUniforms(programInfo, uniforms);
@@ -135,12 +191,8 @@ export class LayerPass {
       gl.uniform1i(gl.getUniformLocation(programInfo.program, U_FILTERED), 1);
     }
     gl.activeTexture(gl.TEXTURE0);
-    gl.bindSampler(0, d.sampler);
-    for (const tile of d.tiles) {
-      const quad = d.quadOf(tile);
-      if (!quad) {
-        continue;
-      }
+    gl.bindSampler(0, sampler);
+    for (const quad of quads) {
       gl.bindTexture(gl.TEXTURE_2D_ARRAY, quad.texture);
       twgl.setUniforms(programInfo, {
         [U_MATRIX]: new Float32Array(quad.matrix),

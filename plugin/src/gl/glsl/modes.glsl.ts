@@ -9,10 +9,12 @@
  *
  * Stages: `STAGE_DIRECT` draws the mode; for the unsharp modes `STAGE_QUANTITY` writes `(q, 1)` into
  * a float framebuffer (coverage a = 1 where drawn) and `STAGE_COMBINE` reads the box-filtered
- * `(F(q·a), F(a))` at the same device pixel and combines.
+ * `(F(q·a), F(a))` at the same device pixel and combines. `unsharpNormals` has no `STAGE_COMBINE`:
+ * its quantity stage also writes `(n, 1)` and `(ρ, 1)` to outputs 1 and 2, kept for the view, and
+ * a full-screen pass combines them with the light (`view-combine.glsl.ts`).
  */
 import { RENDER_MODES } from '../../render/modes';
-import { OUT_COLOR, U_FILTERED, U_LIGHT, U_PARAM } from '../uniforms';
+import { OUT_COLOR, OUT_VIEW_ALBEDO, OUT_VIEW_NORMAL, U_FILTERED, U_PARAM } from '../uniforms';
 
 /** Shader stages. */
 export const STAGE = { direct: 0, quantity: 1, combine: 2 } as const;
@@ -31,7 +33,13 @@ export const MODE_DEFINES: Readonly<Record<string, number>> = {
 export const MODES_MAIN_GLSL = /* glsl */ `
 #if STAGE != STAGE_DIRECT
 uniform sampler2D ${U_FILTERED};
+#endif
+#if STAGE == STAGE_QUANTITY && MODE == MODE_unsharpNormals
+layout(location = 1) out vec4 ${OUT_VIEW_NORMAL};
+layout(location = 2) out vec4 ${OUT_VIEW_ALBEDO};
+#endif
 
+#if STAGE != STAGE_DIRECT
 vec3 quantity() {
 #if MODE == MODE_unsharpNormals
   return lt_normal();
@@ -62,14 +70,11 @@ vec3 shade() {
   vec4 f = texelFetch(${U_FILTERED}, ivec2(gl_FragCoord.xy), 0);
   vec3 q = quantity();
   vec3 qbar = f.a > 0.0 ? f.rgb / f.a : q;
-  float g = ${U_PARAM.umGain};
-#if MODE == MODE_unsharpNormals
-  vec3 ne = normalize(q + g * (q - qbar));
-  return lt_albedo() * (${U_PARAM.umKd} * clamp(dot(ne, ${U_LIGHT}), 0.0, 1.0) + ${U_PARAM.umEnv})
-    / (${U_PARAM.umKd} + ${U_PARAM.umEnv}) * ${U_PARAM.lightIntensity};
-#elif MODE == MODE_unsharpImage
+#if MODE == MODE_unsharpImage
   vec3 c0 = clamp01(lt_color());
-  return c0 + g * (q.x - qbar.x);
+  return c0 + ${U_PARAM.umGain} * (q.x - qbar.x);
+#elif MODE == MODE_unsharpNormals
+#error unsharpNormals is combined by the full-screen pass of view-combine.glsl.ts
 #else
   return lt_unsharp(q, qbar);
 #endif
@@ -80,7 +85,12 @@ vec3 shade() {
 
 void main() {
 #if STAGE == STAGE_QUANTITY
-  ${OUT_COLOR} = vec4(quantity(), 1.0);
+  vec3 q = quantity();
+  ${OUT_COLOR} = vec4(q, 1.0);
+#if MODE == MODE_unsharpNormals
+  ${OUT_VIEW_NORMAL} = vec4(q, 1.0);
+  ${OUT_VIEW_ALBEDO} = vec4(lt_albedo(), 1.0);
+#endif
 #else
   ${OUT_COLOR} = vec4(lanterna_post(shade()), 1.0);
 #endif
