@@ -8,14 +8,15 @@
  */
 import * as twgl from 'twgl.js';
 import type { Stage } from '../gl/glsl/modes.glsl';
-import { U_FILTERED, U_MATRIX, U_PLANES, U_TEX_SCALE } from '../gl/uniforms';
+import { U_FILTERED, U_FILTERED_1, U_MATRIX, U_PLANES, U_TEX_SCALE } from '../gl/uniforms';
+import { quantityFacts } from '../layers/layer-kinds';
 import { layerUniforms, type LayerUniforms } from '../layers/layer-uniforms';
 import { ProgramCache } from '../layers/programs';
 import type { ResolvedLayer } from '../layers/resolved-layer';
 import type { Light } from '../math/light';
 import type { Mat3 } from '../math/matrix';
 import { modeFilter } from '../render/filter-plan';
-import { combinesFromView, quantityExtras, quantityKey, quantityKeepsUnderLight } from '../render/quantity-key';
+import { quantityKey, quantityPlan } from '../render/quantity-key';
 import { DEFAULT_RENDER_MODE, type RenderMode } from '../render/modes';
 import type { RenderParams } from '../render/params';
 import { ObjectIds, QuantityCache } from './quantity-cache';
@@ -52,15 +53,19 @@ export interface LayerDraw<T> {
 }
 
 /**
- * The layer-program stages a mode is drawn in: `direct`, or `quantity` then `combine` around the
- * screen filter (only `quantity` for a mode combined from the view, by {@link ViewCombine}).
+ * The layer-program stages a mode is drawn in on a layer: `direct`, or `quantity` then `combine`
+ * around the screen filter (only `quantity` for a mode combined from the view, by {@link ViewCombine}).
  */
-export function modeStages(mode: RenderMode): Stage[] {
-  if (!modeFilter(mode)) {
+export function modeStages(mode: RenderMode, layer: ResolvedLayer): Stage[] {
+  const plan = quantityPlan(mode, quantityFacts(layer.kind));
+  if (!plan) {
     return ['direct'];
   }
-  return combinesFromView(mode) ? ['quantity'] : ['quantity', 'combine'];
+  return plan.fromView ? ['quantity'] : ['quantity', 'combine'];
 }
+
+/** The samplers of the filtered targets, on texture units 1, 2. */
+const FILTERED_UNIFORMS = [U_FILTERED, U_FILTERED_1];
 
 /** Stands for the canvas (a null target) in the slot names of the kept quantities. */
 const CANVAS = {};
@@ -88,10 +93,10 @@ export class LayerPass {
     if (modeFilter(mode)) {
       this.screenFilter ??= new ScreenFilter(this.gl);
     }
-    for (const stage of modeStages(mode)) {
+    for (const stage of modeStages(mode, layer)) {
       this.programs.get(layer.program, mode, stage, gammaOne);
     }
-    if (combinesFromView(mode)) {
+    if (quantityPlan(mode, quantityFacts(layer.kind))?.fromView) {
       this.viewCombine.program(gammaOne);
     }
   }
@@ -104,6 +109,7 @@ export class LayerPass {
     const uniforms = layerUniforms(d.layer, d.light, d.params);
     const gammaOne = d.params.gamma === 1;
     const filter = modeFilter(mode);
+    const plan = quantityPlan(mode, quantityFacts(d.layer.kind));
     const quads: TileQuad[] = [];
     for (const tile of d.tiles) {
       const quad = d.quadOf(tile);
@@ -120,9 +126,9 @@ export class LayerPass {
         gl.scissor(box[0], box[1], box[2], box[3]);
       }
     };
-    if (!filter) {
+    if (!filter || !plan) {
       bindTarget();
-      this.drawTiles(d.sampler, quads, this.programs.get(spec, mode, 'direct', gammaOne), uniforms, null);
+      this.drawTiles(d.sampler, quads, this.programs.get(spec, mode, 'direct', gammaOne), uniforms, []);
       gl.disable(gl.SCISSOR_TEST);
       return;
     }
@@ -135,28 +141,31 @@ export class LayerPass {
     const width = gl.drawingBufferWidth;
     const height = gl.drawingBufferHeight;
     const ids = this.ids;
-    const key = quantityKeepsUnderLight(mode, d.layer.kind.lit)
+    const key = plan.kept
       ? quantityKey({
         program: ids.of(program), layer: ids.of(d.layer), filter, width, height, sampler: ids.of(d.sampler),
         tiles: quads.map((q) => ({ texture: ids.of(q.texture), matrix: q.matrix, texScale: q.texScale })),
       })
       : null;
     const slot = `${ids.of(d.target ?? CANVAS)}/${ids.of(d.layer)}`;
-    const { targets, fresh } = this.quantities.acquire(slot, key, width, height, quantityExtras(mode));
+    const shape = { width, height, filtered: plan.filtered, extras: plan.extras };
+    const { targets, fresh } = this.quantities.acquire(slot, key, shape);
     if (!fresh) {
       this.screenFilter.beginQuantity(targets);
-      this.drawTiles(d.sampler, quads, program, uniforms, null);
-      this.screenFilter.filter(targets.filtered, filter);
+      this.drawTiles(d.sampler, quads, program, uniforms, []);
+      for (const target of targets.filtered) {
+        this.screenFilter.filter(target, filter);
+      }
       if (key !== null) {
         this.quantities.keep(slot, key);
       }
     }
     bindTarget();
-    if (combinesFromView(mode)) {
+    if (plan.fromView) {
       this.viewCombine.draw(targets, uniforms, gammaOne);
     } else {
       const combine = this.programs.get(spec, mode, 'combine', gammaOne);
-      this.drawTiles(d.sampler, quads, combine, uniforms, targets.filtered.texture);
+      this.drawTiles(d.sampler, quads, combine, uniforms, targets.filtered.map((t) => t.texture));
     }
     gl.disable(gl.SCISSOR_TEST);
   }
@@ -179,17 +188,17 @@ export class LayerPass {
 
   /** Draw an item's tiles (coarse level first, finer over them: painter's algorithm, opaque). */
   private drawTiles(sampler: WebGLSampler, quads: readonly TileQuad[], programInfo: twgl.ProgramInfo,
-    uniforms: LayerUniforms, filtered: WebGLTexture | null): void {
+    uniforms: LayerUniforms, filtered: readonly WebGLTexture[]): void {
     const gl = this.gl;
     gl.useProgram(programInfo.program);
     twgl.setUniforms(programInfo, uniforms);
     gl.uniform1i(gl.getUniformLocation(programInfo.program, U_PLANES), 0);
-    if (filtered) {
-      gl.activeTexture(gl.TEXTURE1);
-      gl.bindTexture(gl.TEXTURE_2D, filtered);
-      gl.bindSampler(1, null);
-      gl.uniform1i(gl.getUniformLocation(programInfo.program, U_FILTERED), 1);
-    }
+    filtered.forEach((texture, i) => {
+      gl.activeTexture(gl.TEXTURE1 + i);
+      gl.bindTexture(gl.TEXTURE_2D, texture);
+      gl.bindSampler(1 + i, null);
+      gl.uniform1i(gl.getUniformLocation(programInfo.program, FILTERED_UNIFORMS[i] ?? ''), 1 + i);
+    });
     gl.activeTexture(gl.TEXTURE0);
     gl.bindSampler(0, sampler);
     for (const quad of quads) {

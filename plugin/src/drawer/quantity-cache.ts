@@ -4,7 +4,7 @@
  * holds (`render/quantity-key.ts`). A slot whose key is unchanged is reused as it is; the
  * quantities that read the light go through one transient set, filtered again every frame.
  */
-import type { QuantityTargets, ScreenFilter } from './screen-filter';
+import type { QuantityShape, QuantityTargets, ScreenFilter } from './screen-filter';
 
 /** How many slots are kept (base layers and the lens layer of one frame, a layer switch's fade). */
 const MAX_SLOTS = 3;
@@ -45,15 +45,15 @@ export class QuantityCache {
   constructor(private readonly filter: ScreenFilter) {}
 
   /**
-   * The targets for `slot`'s quantity of `key` (null: not to be kept), sized `width × height`, with
-   * `extras` extra outputs; `fresh` when they already hold the filtered quantity of that key. When
+   * The targets of `shape` for `slot`'s quantity of `key` (null: not to be kept); `fresh` when they
+   * already hold the filtered quantity of that key. When
    * they do not, the caller draws and filters the quantity into them, then calls
    * {@link QuantityCache.keep}.
    */
-  acquire(slot: string, key: string | null, width: number, height: number, extras: number): QuantitySlot {
+  acquire(slot: string, key: string | null, shape: QuantityShape): QuantitySlot {
     if (key === null) {
       this.release(slot);
-      this.transient = this.filter.targets(this.transient, width, height, extras);
+      this.transient = this.filter.targets(this.transient, shape);
       return { targets: this.transient, fresh: false };
     }
     let entry = this.slots.get(slot);
@@ -63,10 +63,10 @@ export class QuantityCache {
       if (oldest !== undefined) {
         this.release(oldest);
       }
-      entry = { targets: this.filter.targets(null, width, height, extras), key: null };
+      entry = { targets: this.filter.targets(null, shape), key: null };
     }
     this.slots.set(slot, entry);
-    const targets = this.filter.targets(entry.targets, width, height, extras);
+    const targets = this.filter.targets(entry.targets, shape);
     const fresh = entry.key === key && targets === entry.targets;
     if (!fresh) {
       entry.key = null;

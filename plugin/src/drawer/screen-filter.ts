@@ -21,14 +21,22 @@ export interface FloatTarget {
 }
 
 /**
- * The float targets one quantity is drawn into: `filtered`, box-filtered in place, and `extras`,
- * further outputs of the quantity stage kept as drawn (output i + 1 of the fragment shader).
+ * The float targets one quantity is drawn into, output i of the fragment shader to target i:
+ * first the `filtered` ones (at least one), box-filtered in place, then the `extras`, kept as drawn.
  */
 export interface QuantityTargets {
-  readonly filtered: FloatTarget;
+  readonly filtered: readonly [FloatTarget, ...FloatTarget[]];
   readonly extras: readonly FloatTarget[];
-  /** Draws to all of them (`filtered`'s own framebuffer when there are no extras). */
+  /** Draws to all of them (the first target's own framebuffer when it is the only one). */
   readonly framebuffer: WebGLFramebuffer;
+}
+
+/** The size and shape of a quantity's targets. */
+export interface QuantityShape {
+  readonly width: number;
+  readonly height: number;
+  readonly filtered: number;
+  readonly extras: number;
 }
 
 /**
@@ -51,25 +59,27 @@ export class ScreenFilter {
   }
 
   /**
-   * `targets` if they have the size `width × height` and `extras` extra targets, else new ones
-   * (`targets` freed).
+   * `targets` if they have the `shape`, else new ones (`targets` freed).
    *
    * @throws {@link FloatTargetsUnavailableError} if a framebuffer is incomplete
    */
-  targets(targets: QuantityTargets | null, width: number, height: number, extras: number): QuantityTargets {
-    const t = targets?.filtered;
-    if (targets && t && t.width === width && t.height === height && targets.extras.length === extras) {
+  targets(targets: QuantityTargets | null, shape: QuantityShape): QuantityTargets {
+    if (targets && hasShape(targets, shape)) {
       return targets;
     }
     this.free(targets);
     const gl = this.gl;
     const made: FloatTarget[] = [];
     try {
-      for (let i = 0; i <= extras; i++) {
-        made.push(makeTarget(gl, width, height));
+      for (let i = 0; i < Math.max(1, shape.filtered) + shape.extras; i++) {
+        made.push(makeTarget(gl, shape.width, shape.height));
       }
-      const [filtered, ...rest] = made as [FloatTarget, ...FloatTarget[]];
-      return { filtered, extras: rest, framebuffer: extras > 0 ? drawingToAll(gl, made) : filtered.framebuffer };
+      const first = made[0];
+      const filtered = made.slice(0, Math.max(1, shape.filtered)) as [FloatTarget, ...FloatTarget[]];
+      return {
+        filtered, extras: made.slice(filtered.length),
+        framebuffer: made.length > 1 ? drawingToAll(gl, made) : first.framebuffer,
+      };
     } catch (error) {
       made.forEach((target) => { deleteTarget(gl, target); });
       throw error;
@@ -80,7 +90,7 @@ export class ScreenFilter {
   beginQuantity(into: QuantityTargets): void {
     const gl = this.gl;
     gl.bindFramebuffer(gl.FRAMEBUFFER, into.framebuffer);
-    gl.viewport(0, 0, into.filtered.width, into.filtered.height);
+    gl.viewport(0, 0, into.filtered[0].width, into.filtered[0].height);
     gl.clearColor(0, 0, 0, 0);
     gl.clear(gl.COLOR_BUFFER_BIT);
   }
@@ -125,10 +135,11 @@ export class ScreenFilter {
     if (!targets || this.gl.isContextLost()) {
       return;
     }
-    if (targets.extras.length > 0) {
+    const all = [...targets.filtered, ...targets.extras];
+    if (all.length > 1) {
       this.gl.deleteFramebuffer(targets.framebuffer);
     }
-    for (const target of [targets.filtered, ...targets.extras]) {
+    for (const target of all) {
       deleteTarget(this.gl, target);
     }
   }
@@ -147,6 +158,12 @@ export class ScreenFilter {
       this.gl.deleteProgram(this.program.program);
     }
   }
+}
+
+function hasShape(targets: QuantityTargets, shape: QuantityShape): boolean {
+  const t = targets.filtered[0];
+  return t.width === shape.width && t.height === shape.height
+    && targets.filtered.length === Math.max(1, shape.filtered) && targets.extras.length === shape.extras;
 }
 
 /** A framebuffer drawing output i to `targets[i]`. */

@@ -41,7 +41,7 @@ export class ViewCombine {
     const info = this.program(gammaOne);
     gl.useProgram(info.program);
     twgl.setUniforms(info, uniforms);
-    const textures = [kept.filtered, ...kept.extras];
+    const textures = [kept.filtered[0], ...kept.extras];
     UNITS.forEach(([name, unit], i) => {
       gl.activeTexture(gl.TEXTURE0 + unit);
       gl.bindTexture(gl.TEXTURE_2D, textures[i]?.texture ?? null);

@@ -1,31 +1,60 @@
 /**
- * When the filtered quantity of an unsharp mode can be kept while the light moves, and the key of
- * what it was computed from (`docs/rendering.md`, "Screen-space filters", "What is kept while the
+ * How the quantity of an unsharp mode is drawn, whether it can be kept while the light moves, and
+ * the key of what it was computed from (`docs/rendering.md`, "Screen-space filters", "What is kept while the
  * light moves"). Pure: the drawer turns GL objects into numbers before asking.
  */
 import type { BoxFilter } from './filter-plan';
 import type { RenderMode } from './modes';
 
-/**
- * Whether an unsharp mode's quantity (the `quantity()` of the shaders, what the box passes filter)
- * reads the light: `always`, `lit` (only on layers the light changes) or `never`. The light here
- * includes `lightIntensity`, which the relit quantities multiply in. No quantity reads any other
- * parameter: `umGain`, `umKd` and `umEnv` are read by the combine stage only.
- */
-const QUANTITY_READS_LIGHT: Readonly<Partial<Record<RenderMode, 'always' | 'lit' | 'never'>>> = {
-  unsharpNormals: 'never', // n
-  unsharpCoefficients: 'always', // the relit L (PTM lrgb) or the unclamped relit c
-  unsharpLuminance: 'always', // the relit L
-  unsharpImage: 'lit', // Y = luma(clamp01(c)): the colour mode's c, unlit on image layers
-};
+/** What a layer's kind says about its unsharp quantities. */
+export interface QuantityFacts {
+  /** Whether the light changes the layer's picture (`LayerKind.lit`). */
+  readonly lit: boolean;
+  /**
+   * How many vec3 groups of light-independent terms the relit quantity of `unsharpCoefficients`
+   * and `unsharpLuminance` is a weighted sum of (PTM lrgb: 2, the six luminance coefficients), 0
+   * when the kind has none to offer.
+   */
+  readonly unsharpTerms: number;
+}
 
 /**
- * Can the filtered quantity of `mode` on a layer (`lit`: the light changes it) be kept while the
- * light moves? False for the modes without a screen filter.
+ * How an unsharp mode's quantity is drawn, filtered and combined: `kept` while the light moves
+ * (it reads neither the light nor any parameter), into `filtered` targets that are box-filtered
+ * and `extras` kept as drawn, and combined by drawing the tiles again or, `fromView`, by one
+ * full-screen pass over what was kept.
  */
-export function quantityKeepsUnderLight(mode: RenderMode, lit: boolean): boolean {
-  const reads = QUANTITY_READS_LIGHT[mode];
-  return reads === 'never' || (reads === 'lit' && !lit);
+export interface QuantityPlan {
+  readonly kept: boolean;
+  readonly filtered: number;
+  readonly extras: number;
+  readonly fromView: boolean;
+}
+
+const RELIT: QuantityPlan = { kept: false, filtered: 1, extras: 0, fromView: false };
+
+/**
+ * The plan of each unsharp mode's quantity (the `quantity()` of the shaders). No quantity reads a
+ * parameter other than `lightIntensity` (`umGain`, `umKd`, `umEnv` are read by the combine only);
+ * the relit ones read the light and `lightIntensity` and are filtered again every frame.
+ */
+const PLANS: Readonly<Partial<Record<RenderMode, (facts: QuantityFacts) => QuantityPlan>>> = {
+  // n; the combine's per-pixel inputs n and ρ are kept too
+  unsharpNormals: () => ({ kept: true, filtered: 1, extras: 2, fromView: true }),
+  // the relit L or c; by linearity F(Σ wₖaₖ) = Σ wₖF(aₖ), so the kind's terms can be filtered instead
+  unsharpCoefficients: termsPlan,
+  unsharpLuminance: termsPlan,
+  // Y = luma(clamp01(c)), c the colour mode's: unlit on image layers
+  unsharpImage: ({ lit }) => (lit ? RELIT : { ...RELIT, kept: true }),
+};
+
+function termsPlan({ unsharpTerms }: QuantityFacts): QuantityPlan {
+  return unsharpTerms > 0 ? { kept: true, filtered: unsharpTerms, extras: 0, fromView: false } : RELIT;
+}
+
+/** The plan of `mode`'s quantity on a layer with `facts`, or null for a mode without a screen filter. */
+export function quantityPlan(mode: RenderMode, facts: QuantityFacts): QuantityPlan | null {
+  return PLANS[mode]?.(facts) ?? null;
 }
 
 /** One drawn tile as the quantity saw it: its texture's id, its placement and the valid part of its texture. */
@@ -61,16 +90,3 @@ export function quantityKey(q: QuantityInputs): string {
   return [head, ...tiles].join(' ');
 }
 
-/**
- * Is the mode combined by one full-screen pass over what its quantity stage kept for the view (the
- * normal and the albedo of each pixel, besides the filtered quantity), instead of by drawing the
- * tiles again? Only for a quantity that is always kept: `unsharpNormals`.
- */
-export function combinesFromView(mode: RenderMode): boolean {
-  return mode === 'unsharpNormals';
-}
-
-/** The extra outputs of a mode's quantity stage, kept for the view: `(n, 1)` and `(ρ, 1)` for {@link combinesFromView}. */
-export function quantityExtras(mode: RenderMode): number {
-  return combinesFromView(mode) ? 2 : 0;
-}

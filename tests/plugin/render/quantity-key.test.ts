@@ -1,8 +1,8 @@
 import { describe, expect, it } from 'vitest';
-import { F3, F5 } from '../../../plugin/src/render/filter-plan';
+import { F3, F5, modeFilter } from '../../../plugin/src/render/filter-plan';
 import { RENDER_MODES } from '../../../plugin/src/render/modes';
 import {
-  combinesFromView, quantityExtras, quantityKey, quantityKeepsUnderLight, type QuantityInputs,
+  quantityKey, quantityPlan, type QuantityFacts, type QuantityInputs,
 } from '../../../plugin/src/render/quantity-key';
 
 const BASE: QuantityInputs = {
@@ -13,20 +13,33 @@ const BASE: QuantityInputs = {
   ],
 };
 
-describe('which filtered quantities are kept while the light moves', () => {
-  it('keeps the normals always, the image quantity on unlit layers only, never a relit quantity', () => {
-    const kept = (lit: boolean): string[] => RENDER_MODES.filter((m) => quantityKeepsUnderLight(m, lit));
-    expect(kept(true)).toEqual(['unsharpNormals']);
-    expect(kept(false)).toEqual(['unsharpNormals', 'unsharpImage']);
+describe('how the unsharp quantities are drawn and kept', () => {
+  const LIT = { lit: true, unsharpTerms: 0 };
+  const UNLIT = { lit: false, unsharpTerms: 0 };
+  const LRGB = { lit: true, unsharpTerms: 2 };
+  const kept = (facts: QuantityFacts): string[] => RENDER_MODES.filter((m) => quantityPlan(m, facts)?.kept);
+
+  it('has a plan for each mode with a screen filter, and only for those', () => {
+    for (const mode of RENDER_MODES) {
+      expect(quantityPlan(mode, LIT) !== null).toBe(modeFilter(mode) !== null);
+    }
+  });
+
+  it('keeps the normals always, the image quantity on unlit layers, the relit ones only through terms', () => {
+    expect(kept(LIT)).toEqual(['unsharpNormals']);
+    expect(kept(UNLIT)).toEqual(['unsharpNormals', 'unsharpImage']);
+    expect(kept(LRGB)).toEqual(['unsharpNormals', 'unsharpCoefficients', 'unsharpLuminance']);
+  });
+
+  it('filters the terms instead of the relit quantity where the kind has them', () => {
+    expect(quantityPlan('unsharpCoefficients', LRGB)).toEqual({ kept: true, filtered: 2, extras: 0, fromView: false });
+    expect(quantityPlan('unsharpCoefficients', LIT)).toEqual({ kept: false, filtered: 1, extras: 0, fromView: false });
   });
 
   it('combines only the normals from the view, with the normal and albedo kept', () => {
-    expect(RENDER_MODES.filter(combinesFromView)).toEqual(['unsharpNormals']);
-    expect(quantityExtras('unsharpNormals')).toBe(2);
-    expect(quantityExtras('unsharpImage')).toBe(0);
-    // a mode combined from the view must have a kept quantity on every layer
-    for (const mode of RENDER_MODES.filter(combinesFromView)) {
-      expect(quantityKeepsUnderLight(mode, true) && quantityKeepsUnderLight(mode, false)).toBe(true);
+    for (const facts of [LIT, UNLIT, LRGB]) {
+      expect(RENDER_MODES.filter((m) => quantityPlan(m, facts)?.fromView)).toEqual(['unsharpNormals']);
+      expect(quantityPlan('unsharpNormals', facts)).toEqual({ kept: true, filtered: 1, extras: 2, fromView: true });
     }
   });
 });

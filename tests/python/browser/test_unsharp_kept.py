@@ -1,14 +1,15 @@
 """Real Chromium: the kept filtered quantity of the unsharp modes stays right.
 
 The unsharp modes whose quantity does not read the light (``unsharpNormals``; ``unsharpImage`` on
-an unlit layer) keep the filtered quantity of the view, and ``unsharpNormals`` also the normal and
-albedo of each pixel, while only the light moves (docs/rendering.md, "What is kept while the light
-moves"). One Chromium run moves the light several times over one view, then changes the
+an unlit layer) keep the filtered quantity of the view, ``unsharpNormals`` also the normal and
+albedo of each pixel, and ``unsharpCoefficients``/``unsharpLuminance`` on PTM lrgb the filtered
+luminance coefficients, while only the light moves (docs/rendering.md, "What is kept while the
+light moves"). One Chromium run moves the light several times over one view, then changes the
 parameters, pans, zooms, switches layers and back, and shows the same mode in the lens on another
 layer; every frame must equal the numpy reference of its own light, view and parameters, so a kept
 result that was not recomputed when it should have been (or one lens and base overwrote) shows
-as wrong pixels. The relit quantities (``unsharpCoefficients``, ``unsharpImage`` on a lit layer)
-are filtered again every frame: their frames must follow the light.
+as wrong pixels. The relit quantities (``unsharpCoefficients`` on PTM rgb, ``unsharpImage`` on a
+lit layer) are filtered again every frame: their frames must follow the light.
 """
 
 from __future__ import annotations
@@ -80,9 +81,17 @@ STEPS = [
     *[Step(f"image{i}", "img_rgb", "unsharpImage", light, params={"umGain": 2.0})
       for i, light in enumerate([L0, L1])],
     Step("image-pan", "img_rgb", "unsharpImage", L1, origin=(232, 196), params={"umGain": 2.0}),
-    # the relit quantities follow the light
+    # PTM lrgb: the luminance coefficients are filtered once per view
     *[Step(f"coef{i}", "ptm_lrgb", "unsharpCoefficients", light, params={"umGain": 2.5})
       for i, light in enumerate([L0, L1, L2])],
+    Step("coef-gain", "ptm_lrgb", "unsharpCoefficients", L3, params={"umGain": 4.0}),
+    Step("coef-pan", "ptm_lrgb", "unsharpCoefficients", L3, origin=(232, 196),
+         params={"umGain": 4.0}),
+    *[Step(f"lum{i}", "ptm_lrgb", "unsharpLuminance", light, params={"umGain": 3.0})
+      for i, light in enumerate([L0, L1])],
+    # the relit quantities follow the light
+    *[Step(f"rgb-coef{i}", "ptm_rgb", "unsharpCoefficients", light, params={"umGain": 2.5})
+      for i, light in enumerate([L0, L1])],
     *[Step(f"relit-image{i}", "hsh9", "unsharpImage", light, params={"umGain": 2.0})
       for i, light in enumerate([L0, L1])],
 ]
@@ -147,7 +156,8 @@ def test_frame_equals_the_reference(frames: dict[str, tuple[Step, Any, Any]], na
 def test_the_light_moves_change_the_picture(frames: dict[str, tuple[Step, Any, Any]]) -> None:
     """The frames of one view under different lights differ (the reuse is not of a stale frame)."""
     for names in (["light0", "light1", "light2", "light3", "light4"], ["lens0", "lens1", "lens2"],
-                  ["coef0", "coef1", "coef2"], ["relit-image0", "relit-image1"]):
+                  ["coef0", "coef1", "coef2"], ["lum0", "lum1"], ["rgb-coef0", "rgb-coef1"],
+                  ["relit-image0", "relit-image1"]):
         pictures = [frames[n][1] for n in names]
         for a, b in zip(pictures, pictures[1:], strict=False):
             assert np.abs(a - b).mean() > 3, f"{names}: the light did not change the picture"
