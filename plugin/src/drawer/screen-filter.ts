@@ -1,6 +1,6 @@
 /**
  * Float render targets and box passes for the screen-space unsharp modes: the quantity is drawn
- * into target 0, then each box pass ping-pongs between the two targets.
+ * into a float target, then the box passes ping-pong between it and a scratch target.
  */
 import * as twgl from 'twgl.js';
 import { BOX_FRAGMENT_SHADER, FULLSCREEN_VERTEX_SHADER } from '../gl/glsl/box.glsl';
@@ -12,16 +12,40 @@ import { boxPasses, type BoxFilter } from '../render/filter-plan';
 /** Float colour buffers are not renderable in this context (no `EXT_color_buffer_float`). */
 export class FloatTargetsUnavailableError extends LanternaError {}
 
-interface Target {
-  texture: WebGLTexture;
-  framebuffer: WebGLFramebuffer;
+/** A canvas-sized RGBA32F texture and its framebuffer. */
+export interface FloatTarget {
+  readonly texture: WebGLTexture;
+  readonly framebuffer: WebGLFramebuffer;
+  readonly width: number;
+  readonly height: number;
 }
 
-/** Two canvas-sized RGBA32F targets and the box-pass program. */
+/**
+ * The float targets one quantity is drawn into, output i of the fragment shader to target i:
+ * first the `filtered` ones (at least one), box-filtered in place, then the `extras`, kept as drawn.
+ */
+export interface QuantityTargets {
+  readonly filtered: readonly [FloatTarget, ...FloatTarget[]];
+  readonly extras: readonly FloatTarget[];
+  /** Draws to all of them (the first target's own framebuffer when it is the only one). */
+  readonly framebuffer: WebGLFramebuffer;
+}
+
+/** The size and shape of a quantity's targets. */
+export interface QuantityShape {
+  readonly width: number;
+  readonly height: number;
+  readonly filtered: number;
+  readonly extras: number;
+}
+
+/**
+ * The box-pass program and one scratch target. The quantity is drawn into targets of the caller's
+ * (see {@link ScreenFilter.targets}); each box pass goes from the filtered one to the scratch target
+ * or back, and as the passes come in pairs (x then y) the result ends in the caller's target.
+ */
 export class ScreenFilter {
-  private targets: [Target, Target] | null = null;
-  private width = 0;
-  private height = 0;
+  private scratch: FloatTarget | null = null;
   private readonly program: twgl.ProgramInfo;
 
   /**
@@ -34,31 +58,65 @@ export class ScreenFilter {
     this.program = compileProgram(gl, FULLSCREEN_VERTEX_SHADER, BOX_FRAGMENT_SHADER, 'box-pass');
   }
 
-  /** Bind target 0 (sized to width × height, cleared to 0) for drawing the quantity. */
-  beginQuantity(width: number, height: number): void {
+  /**
+   * `targets` if they have the `shape`, else new ones (`targets` freed).
+   *
+   * @throws {@link FloatTargetsUnavailableError} if a framebuffer is incomplete
+   */
+  targets(targets: QuantityTargets | null, shape: QuantityShape): QuantityTargets {
+    if (targets && hasShape(targets, shape)) {
+      return targets;
+    }
+    this.free(targets);
     const gl = this.gl;
-    const targets = this.ensure(width, height);
-    gl.bindFramebuffer(gl.FRAMEBUFFER, targets[0].framebuffer);
-    gl.viewport(0, 0, width, height);
+    const made: FloatTarget[] = [];
+    try {
+      for (let i = 0; i < Math.max(1, shape.filtered) + shape.extras; i++) {
+        made.push(makeTarget(gl, shape.width, shape.height));
+      }
+      const first = made[0];
+      const filtered = made.slice(0, Math.max(1, shape.filtered)) as [FloatTarget, ...FloatTarget[]];
+      return {
+        filtered, extras: made.slice(filtered.length),
+        framebuffer: made.length > 1 ? drawingToAll(gl, made) : first.framebuffer,
+      };
+    } catch (error) {
+      made.forEach((target) => { deleteTarget(gl, target); });
+      throw error;
+    }
+  }
+
+  /** Bind `into` (all its targets cleared to 0, viewport their size) for drawing the quantity. */
+  beginQuantity(into: QuantityTargets): void {
+    const gl = this.gl;
+    gl.bindFramebuffer(gl.FRAMEBUFFER, into.framebuffer);
+    gl.viewport(0, 0, into.filtered[0].width, into.filtered[0].height);
     gl.clearColor(0, 0, 0, 0);
     gl.clear(gl.COLOR_BUFFER_BIT);
   }
 
   /**
-   * Run the filter's box passes on target 0; returns the texture holding the result.
-   * Leaves the default framebuffer unbound (the caller binds its own).
+   * Run the filter's box passes on `into`, in place (through the scratch target); returns its texture.
+   * Leaves the default framebuffer bound (the caller binds its own).
    */
-  filter(filter: BoxFilter): WebGLTexture {
+  filter(into: FloatTarget, filter: BoxFilter): WebGLTexture {
     const gl = this.gl;
-    const targets = this.ensure(this.width, this.height);
+    const passes = boxPasses(filter);
+    if (passes.length % 2 !== 0) {
+      throw new LanternaError(`a box filter of ${passes.length} passes: the passes must come in pairs`);
+    }
+    if (!this.scratch || this.scratch.width !== into.width || this.scratch.height !== into.height) {
+      this.freeTarget(this.scratch);
+      this.scratch = null;
+      this.scratch = makeTarget(gl, into.width, into.height);
+    }
+    const pair = [into, this.scratch] as const;
     gl.useProgram(this.program.program);
-    let src = 0;
-    for (const pass of boxPasses(filter)) {
-      const dst = 1 - src;
-      gl.bindFramebuffer(gl.FRAMEBUFFER, targets[dst].framebuffer);
-      gl.viewport(0, 0, this.width, this.height);
+    passes.forEach((pass, i) => {
+      gl.bindFramebuffer(gl.FRAMEBUFFER, pair[(i + 1) % 2].framebuffer);
+      gl.viewport(0, 0, into.width, into.height);
       gl.activeTexture(gl.TEXTURE1);
-      gl.bindTexture(gl.TEXTURE_2D, targets[src].texture);
+      gl.bindTexture(gl.TEXTURE_2D, pair[i % 2].texture);
       gl.bindSampler(1, null);
       gl.uniform1i(gl.getUniformLocation(this.program.program, U_SOURCE), 1);
       twgl.setUniforms(this.program, {
@@ -66,57 +124,91 @@ export class ScreenFilter {
         [U_RADIUS]: pass.radius,
       });
       gl.drawArrays(gl.TRIANGLES, 0, 3);
-      src = dst;
-    }
+    });
+    gl.bindTexture(gl.TEXTURE_2D, null);
     gl.bindFramebuffer(gl.FRAMEBUFFER, null);
-    return targets[src as 0 | 1].texture;
+    return into.texture;
   }
 
-  /** Free the targets and the program. */
+  /** Delete a quantity's targets (if the context is live). */
+  free(targets: QuantityTargets | null): void {
+    if (!targets || this.gl.isContextLost()) {
+      return;
+    }
+    const all = [...targets.filtered, ...targets.extras];
+    if (all.length > 1) {
+      this.gl.deleteFramebuffer(targets.framebuffer);
+    }
+    for (const target of all) {
+      deleteTarget(this.gl, target);
+    }
+  }
+
+  private freeTarget(target: FloatTarget | null): void {
+    if (target && !this.gl.isContextLost()) {
+      deleteTarget(this.gl, target);
+    }
+  }
+
+  /** Free the scratch target and the program (the caller frees its own targets). */
   destroy(): void {
-    this.freeTargets();
+    this.freeTarget(this.scratch);
+    this.scratch = null;
     if (!this.gl.isContextLost()) {
       this.gl.deleteProgram(this.program.program);
     }
   }
+}
 
-  private ensure(width: number, height: number): [Target, Target] {
-    if (this.targets && this.width === width && this.height === height) {
-      return this.targets;
-    }
-    this.freeTargets();
-    const make = (): Target => {
-      const gl = this.gl;
-      const texture = gl.createTexture();
-      gl.bindTexture(gl.TEXTURE_2D, texture);
-      gl.texStorage2D(gl.TEXTURE_2D, 1, gl.RGBA32F, width, height);
-      gl.texParameteri(gl.TEXTURE_2D, gl.TEXTURE_MIN_FILTER, gl.NEAREST);
-      gl.texParameteri(gl.TEXTURE_2D, gl.TEXTURE_MAG_FILTER, gl.NEAREST);
-      gl.texParameteri(gl.TEXTURE_2D, gl.TEXTURE_WRAP_S, gl.CLAMP_TO_EDGE);
-      gl.texParameteri(gl.TEXTURE_2D, gl.TEXTURE_WRAP_T, gl.CLAMP_TO_EDGE);
-      const framebuffer = gl.createFramebuffer();
-      gl.bindFramebuffer(gl.FRAMEBUFFER, framebuffer);
-      gl.framebufferTexture2D(gl.FRAMEBUFFER, gl.COLOR_ATTACHMENT0, gl.TEXTURE_2D, texture, 0);
-      const status = gl.checkFramebufferStatus(gl.FRAMEBUFFER);
-      gl.bindFramebuffer(gl.FRAMEBUFFER, null);
-      if (status !== gl.FRAMEBUFFER_COMPLETE) {
-        throw new FloatTargetsUnavailableError(`RGBA32F framebuffer incomplete (0x${status.toString(16)})`);
-      }
-      return { texture, framebuffer };
-    };
-    this.targets = [make(), make()];
-    this.width = width;
-    this.height = height;
-    return this.targets;
-  }
+function hasShape(targets: QuantityTargets, shape: QuantityShape): boolean {
+  const t = targets.filtered[0];
+  return t.width === shape.width && t.height === shape.height
+    && targets.filtered.length === Math.max(1, shape.filtered) && targets.extras.length === shape.extras;
+}
 
-  private freeTargets(): void {
-    if (this.targets && !this.gl.isContextLost()) {
-      for (const t of this.targets) {
-        this.gl.deleteFramebuffer(t.framebuffer);
-        this.gl.deleteTexture(t.texture);
-      }
-    }
-    this.targets = null;
+/** A framebuffer drawing output i to `targets[i]`. */
+function drawingToAll(gl: WebGL2RenderingContext, targets: readonly FloatTarget[]): WebGLFramebuffer {
+  const framebuffer = gl.createFramebuffer();
+  gl.bindFramebuffer(gl.FRAMEBUFFER, framebuffer);
+  const attachments = targets.map((target, i) => {
+    gl.framebufferTexture2D(gl.FRAMEBUFFER, gl.COLOR_ATTACHMENT0 + i, gl.TEXTURE_2D, target.texture, 0);
+    return gl.COLOR_ATTACHMENT0 + i;
+  });
+  gl.drawBuffers(attachments);
+  const status = gl.checkFramebufferStatus(gl.FRAMEBUFFER);
+  gl.bindFramebuffer(gl.FRAMEBUFFER, null);
+  if (status !== gl.FRAMEBUFFER_COMPLETE) {
+    gl.deleteFramebuffer(framebuffer);
+    throw new FloatTargetsUnavailableError(`RGBA32F framebuffer of ${targets.length} outputs incomplete `
+      + `(0x${status.toString(16)})`);
   }
+  return framebuffer;
+}
+
+function deleteTarget(gl: WebGL2RenderingContext, target: FloatTarget): void {
+  gl.deleteFramebuffer(target.framebuffer);
+  gl.deleteTexture(target.texture);
+}
+
+/** A `width × height` RGBA32F target, nearest-sampled, clamped. */
+function makeTarget(gl: WebGL2RenderingContext, width: number, height: number): FloatTarget {
+  const texture = gl.createTexture();
+  gl.bindTexture(gl.TEXTURE_2D, texture);
+  gl.texStorage2D(gl.TEXTURE_2D, 1, gl.RGBA32F, width, height);
+  gl.texParameteri(gl.TEXTURE_2D, gl.TEXTURE_MIN_FILTER, gl.NEAREST);
+  gl.texParameteri(gl.TEXTURE_2D, gl.TEXTURE_MAG_FILTER, gl.NEAREST);
+  gl.texParameteri(gl.TEXTURE_2D, gl.TEXTURE_WRAP_S, gl.CLAMP_TO_EDGE);
+  gl.texParameteri(gl.TEXTURE_2D, gl.TEXTURE_WRAP_T, gl.CLAMP_TO_EDGE);
+  gl.bindTexture(gl.TEXTURE_2D, null);
+  const framebuffer = gl.createFramebuffer();
+  gl.bindFramebuffer(gl.FRAMEBUFFER, framebuffer);
+  gl.framebufferTexture2D(gl.FRAMEBUFFER, gl.COLOR_ATTACHMENT0, gl.TEXTURE_2D, texture, 0);
+  const status = gl.checkFramebufferStatus(gl.FRAMEBUFFER);
+  gl.bindFramebuffer(gl.FRAMEBUFFER, null);
+  if (status !== gl.FRAMEBUFFER_COMPLETE) {
+    gl.deleteFramebuffer(framebuffer);
+    gl.deleteTexture(texture);
+    throw new FloatTargetsUnavailableError(`RGBA32F framebuffer incomplete (0x${status.toString(16)})`);
+  }
+  return { texture, framebuffer, width, height };
 }

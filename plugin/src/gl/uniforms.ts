@@ -27,6 +27,17 @@ export const U_HSH_NORMAL_INV = 'u_hshNormalInv';
 export const U_GLOSS_LIMITS = 'u_glossLimits';
 /** sampler2D: the box-filtered (q·a, a) of the unsharp modes (combine stage). */
 export const U_FILTERED = 'u_filtered';
+/** sampler2D: the box-filtered second group of terms `(F(t₁·a), F(a))` (kinds with `UNSHARP_TERMS`). */
+export const U_FILTERED_1 = 'u_filtered1';
+/** Fragment output 1 of a quantity stage drawing two groups of terms. */
+export const OUT_TERMS_1 = 'outTerms1';
+/** sampler2D: `(n, a)` of the view, kept by the `unsharpNormals` quantity stage (output 1). */
+export const U_VIEW_NORMAL = 'u_viewNormal';
+/** sampler2D: `(ρ, a)` of the view, kept by the `unsharpNormals` quantity stage (output 2). */
+export const U_VIEW_ALBEDO = 'u_viewAlbedo';
+/** Fragment outputs 1 and 2 of the `unsharpNormals` quantity stage. */
+export const OUT_VIEW_NORMAL = 'outViewNormal';
+export const OUT_VIEW_ALBEDO = 'outViewAlbedo';
 /** sampler2D: the input of a box pass. */
 export const U_SOURCE = 'u_source';
 /** ivec2: box pass direction, (1, 0) or (0, 1). */

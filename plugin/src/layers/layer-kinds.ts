@@ -12,6 +12,7 @@ import { hshNormalInverse, hshNormalWeights, hshWeights } from '../math/hsh-basi
 import type { Light } from '../math/light';
 import { ptmWeights } from '../math/ptm-basis';
 import { RENDER_MODES, type RenderMode, type ShadingClass } from '../render/modes';
+import type { QuantityFacts } from '../render/quantity-key';
 import { HSH_FRAGMENT_BODY } from './hsh/hsh.frag';
 import { IMAGE_FRAGMENT_BODY } from './image/image.frag';
 import { ptmFragmentBody } from './ptm/ptm.frag';
@@ -105,7 +106,8 @@ export const LAYER_KINDS: Readonly<Record<LayerKindName, LayerKind>> = {
     modes: RENDER_MODES,
     lit: true,
     previewPlane: 2,
-    glsl: { name: 'ptm-lrgb', body: ptmFragmentBody('lrgb'), defines: {} },
+    // UNSHARP_TERMS: L is Σ wₖLₖ, so the unsharp quantities filter the terms (lt_unsharp_terms)
+    glsl: { name: 'ptm-lrgb', body: ptmFragmentBody('lrgb'), defines: { UNSHARP_TERMS: 2 } },
     weights: ptmLight,
     uniforms: () => NO_UNIFORMS,
   },
@@ -153,6 +155,11 @@ export const LAYER_KINDS: Readonly<Record<LayerKindName, LayerKind>> = {
     uniforms: () => NO_UNIFORMS,
   },
 };
+
+/** What the unsharp quantities of a kind's layers read and offer (`render/quantity-key.ts`). */
+export function quantityFacts(kind: LayerKind): QuantityFacts {
+  return { lit: kind.lit, unsharpTerms: kind.glsl.defines['UNSHARP_TERMS'] ?? 0 };
+}
 
 /** What the kind of a layer depends on. */
 export type LayerFacts = Pick<RelightLayer, 'layerType' | 'colorspace' | 'terms' | 'planes'>;

@@ -3,7 +3,7 @@ import { describe, expect, it } from 'vitest';
 import { U_GLOSS_LIMITS, U_HSH_NORMAL_INV, U_HSH_NORMAL_WEIGHTS } from '../../../plugin/src/gl/uniforms';
 import { parseRelightService, type RelightLayer } from '../../../plugin/src/iiif/relight-service';
 import {
-  applicableModes, LAYER_KINDS, layerKindOf, shadingClass, type LayerKindName,
+  applicableModes, LAYER_KINDS, layerKindOf, quantityFacts, shadingClass, type LayerKindName,
 } from '../../../plugin/src/layers/layer-kinds';
 import { resolveLayer } from '../../../plugin/src/layers/resolved-layer';
 import { hshWeights } from '../../../plugin/src/math/hsh-basis';
@@ -143,5 +143,19 @@ describe('a layer\'s kind', () => {
     expect(resolveLayer(material).program.key)
       .toBe('svbrdf,SV_NORMALS=-1,SV_KD=0,SV_KS=-1,SV_GLOSS=1,SV_SRGB=0,SV_DISPLAY=0');
     expect(resolveLayer(shape).kind).toBe(LAYER_KINDS.svbrdf);
+  });
+});
+
+describe('the unsharp terms of a kind', () => {
+  it('are offered exactly by the kinds whose GLSL filters them, two groups each', () => {
+    for (const kind of Object.values(LAYER_KINDS)) {
+      const { unsharpTerms } = quantityFacts(kind);
+      expect(kind.glsl.body.includes('lt_unsharp_terms'), kind.name).toBe(unsharpTerms > 0);
+      expect([0, 2], kind.name).toContain(unsharpTerms);
+      if (unsharpTerms > 0) {
+        expect(kind.modes).toContain('unsharpCoefficients');
+      }
+    }
+    expect(quantityFacts(LAYER_KINDS['ptm-lrgb']).unsharpTerms).toBe(2);
   });
 });

@@ -34,7 +34,7 @@ uniform vec3 ${U_LIGHT};
 uniform vec3 ${U_HALF};
 ${params}
 in vec2 ${V_UV};
-out vec4 ${OUT_COLOR};
+layout(location = 0) out vec4 ${OUT_COLOR};
 
 vec3 lanterna_plane(int k) {
   vec3 t = texture(${U_PLANES}, vec3(${V_UV}, float(k))).rgb;

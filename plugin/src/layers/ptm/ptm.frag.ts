@@ -68,6 +68,9 @@ vec3 lt_diffuse_gain() {
   return lanterna_plane(2) * ptm_eval(p2, q2) * ${I};
 }
 vec3 lt_unsharp_q() { return vec3(lt_lum(), 0.0, 0.0); }
+// the quantity's light-independent terms (filtered once per view) and the quantity from them
+void lt_unsharp_terms(out vec3 t0, out vec3 t1) { t0 = lanterna_plane(0); t1 = lanterna_plane(1); }
+vec3 lt_unsharp_from_terms(vec3 t0, vec3 t1) { return vec3(ptm_eval(t0, t1), 0.0, 0.0); }
 vec3 lt_unsharp(vec3 q, vec3 qbar) {
   float l2 = q.x + ${U_PARAM.umGain} * (q.x - qbar.x);
   return lanterna_plane(2) * l2 * ${I};
