@@ -32,7 +32,8 @@ PACKAGED_VIEWER = Path(__file__).resolve().parent / "viewer"
 REPO_VIEWER = Path(__file__).resolve().parent.parent / "plugin" / "dist" / "viewer"
 #: How to build the viewer when it is missing.
 BUILD_VIEWER = "run `make build` in the Lanterna checkout"
-_MEDIA = {".png": "image/png", ".jpg": "image/jpeg", ".jpeg": "image/jpeg", ".json": None}
+_MEDIA = {".png": "image/png", ".jpg": "image/jpeg", ".jpeg": "image/jpeg", ".webp": "image/webp",
+          ".json": None}
 
 
 def default_viewer() -> Path:

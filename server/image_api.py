@@ -51,6 +51,9 @@ PROFILE_URI = image_profile_uri(PROFILE)
 EXTRA_FEATURES = ["regionByPct", "sizeByPct", "sizeByConfinedWh", "rotationBy90s", "mirroring",
                   "profileLinkHeader", "canonicalLinkHeader"]
 EXTRA_QUALITIES = ["color", "gray", "bitonal"]
+#: Dataset tile formats whose TIFF holds the data losslessly: served as lossless WebP, and the
+#: format itself is the info.json's ``preferredFormats``.
+LOSSLESS_FORMATS = ("png", "webp")
 #: Config keys and their defaults (documented in docs/serving.md).
 DEFAULTS: dict[str, Any] = {
     "IIIF_MAX_WIDTH": MAX_SIDE,
@@ -124,7 +127,7 @@ def _image_formats(desc_path: Path, _mtime_ns: int) -> dict[str, str]:
 
 
 def _source_format(tiff: Path, image: str) -> str:
-    """Return the dataset format of the image (``png`` for lossless data, else ``jpg``)."""
+    """Return the dataset format of the image's tiles (``png``, ``webp`` or ``jpg``)."""
     desc = tiff.parent.parent / "lanterna.json"
     try:
         mtime = desc.stat().st_mtime_ns
@@ -193,8 +196,9 @@ def info_document(tiff: Path, image: str, service_id: str, limits: Limits,
         "extraQualities": EXTRA_QUALITIES,
         "extraFeatures": EXTRA_FEATURES + (["sizeUpscaling"] if limits.upscaling else []),
     }
-    if _source_format(tiff, image) == "png":
-        doc["preferredFormats"] = ["png"]
+    source = _source_format(tiff, image)
+    if source in LOSSLESS_FORMATS:
+        doc["preferredFormats"] = [source]
     return doc
 
 
@@ -238,7 +242,7 @@ def image_request(dataset: str, image: str, region: str, size: str, rotation: st
         resp: Response | BaseResponse = Response(status=304)
     else:
         out = image_response.compute_image(tiff, req, plan)
-        lossless = _source_format(tiff, image) == "png"
+        lossless = _source_format(tiff, image) in LOSSLESS_FORMATS
         resp = Response(image_response.encode(out, req.format, lossless=lossless),
                         mimetype=FORMATS[req.format])
     return _cached(resp, tiff, etag, f"{base_uri}/{canonical}")

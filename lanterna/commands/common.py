@@ -26,6 +26,9 @@ def dataset_args(p: argparse.ArgumentParser, *, label_default: str) -> None:
     p.add_argument("--tiff", action="store_true",
                    help="also write a pyramidal TIFF per image (tiff/<image>.tif) for the IIIF "
                         "image server at /iiif/3/ (and IIPImage or Cantaloupe)")
+    p.add_argument("--plane-format", default="auto", metavar="auto|png|webp|jpg[:Q]",
+                   help="tile format of relightable layers' planes (default auto: by source, "
+                        "lossy sources within a stated error bound; docs/dataset-format.md)")
     max_pixels_arg(p)
 
 

@@ -89,16 +89,18 @@ def _sets(args: argparse.Namespace) -> list[ImageSet]:
 
 
 def run(args: argparse.Namespace) -> int:
+    from lanterna.tiler.dataset.plane_format import parse_plane_format
     from lanterna.tiler.fit.run import fit_sets
     from lanterna.tiler.progress import Progress
 
     check_tile_size(args.tile_size)
+    plane_format = parse_plane_format(args.plane_format)
     fusions = [tuple(part.strip() for part in f.split(",")) for f in args.fusion]
     fit_sets(_sets(args), args.model, args.output, fusions=fusions,
              terms=args.terms, name=args.name, label=args.label, base_url=args.base_url,
              tile_size=args.tile_size, force=args.force, band_rows=args.band_rows,
              tiff=args.tiff, scratch=args.scratch, fit_space=args.fit_space,
-             scheduler=args.scheduler, report=print,
+             scheduler=args.scheduler, plane_format=plane_format, report=print,
              progress=None if args.quiet else Progress)
     print_written(args.output)
     return 0

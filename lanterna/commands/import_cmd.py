@@ -21,6 +21,8 @@ IMPORT_EXAMPLES = """examples:
       multispectral bands as grey layers, and a false-colour layer
   lanterna import ushabti.ptm --tiff -o datasets/ushabti
       also a pyramidal TIFF per image, for the IIIF image server at /iiif/3/
+  lanterna import vase.rti --plane-format png -o datasets/vase
+      PNG plane tiles (default auto: chosen by source, docs/dataset-format.md)
 
 Every source type and the description file: docs/importing.md.
 """
@@ -42,9 +44,11 @@ def register(sub: SubParsers) -> None:
 
 
 def run(args: argparse.Namespace) -> int:
+    from lanterna.tiler.dataset.plane_format import parse_plane_format
     from lanterna.tiler.ingest.importer import import_sources
 
     check_tile_size(args.tile_size)
+    plane_format = parse_plane_format(args.plane_format)
     bands: dict[str, Path] = {}
     for item in args.band:
         band, sep, file = item.partition("=")
@@ -56,6 +60,7 @@ def run(args: argparse.Namespace) -> int:
         raise LanternaInputError(None, "nothing to import: give a SOURCE or --band NAME=FILE")
     out = import_sources(args.sources, args.output, name=args.name, label=args.label,
                          bands=bands, fusions=fusions, base_url=args.base_url,
-                         tile_size=args.tile_size, force=args.force, tiff=args.tiff)
+                         tile_size=args.tile_size, force=args.force, tiff=args.tiff,
+                         plane_format=plane_format)
     print_written(out)
     return 0

@@ -12,14 +12,15 @@ def summary(desc: Mapping[str, Any]) -> list[str]:
     """Describe a dataset from its parsed ``lanterna.json``.
 
     A headline (name, label, size, layer count), then one line per layer (id, type, size,
-    images, overlay levels), then the pyramidal TIFFs if any were written.
+    images and their tile formats, overlay levels), then the pyramidal TIFFs if any were written.
     """
     from lanterna.tiler.overlays.build import overlay_rows
 
     layers: list[dict[str, Any]] = desc.get("layers", [])
     overlays = {row["id"]: row for row in overlay_rows(desc)}
     rows = [(layer["id"], _kind(layer["service"]), _size(layer["service"]),
-             _count(len(layer["service"].get("planes", [])), "image"),
+             _count(len(layer["service"].get("planes", [])), "image")
+             + _formats(layer["service"], desc.get("images", {})),
              _overlay(overlays.get(layer["id"]))) for layer in layers]
     w = [max((len(row[i]) for row in rows), default=0) for i in range(4)]
     lines = [f"dataset {desc['name']} \"{desc.get('label', desc['name'])}\", {_size(desc)}, "
@@ -68,6 +69,16 @@ def _kind(service: Mapping[str, Any]) -> str:
     if kind == "image":
         return "image grey" if [p["channels"] for p in planes] == [["Y"]] else "image RGB"
     return kind
+
+
+def _formats(service: Mapping[str, Any], images: Mapping[str, Any]) -> str:
+    """`` webp:near60``, `` png+webp``: the plane images' tile formats (--plane-format's choice)."""
+    from lanterna.tiler.iiif.encoding import TileFormat
+
+    labels = {TileFormat(plane["format"], images.get(
+        str(plane["service"]["id"]).rsplit("/", 1)[-1], {}).get("quality")).label()
+        for plane in service.get("planes", []) if "format" in plane}
+    return " " + "+".join(sorted(labels)) if labels else ""
 
 
 def _size(item: Mapping[str, Any]) -> str:

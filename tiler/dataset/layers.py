@@ -3,7 +3,8 @@
 Every ``add_*_layer`` turns its input into :class:`~lanterna.tiler.formats.planes.PlaneGroup` s
 (three channels per IIIF image, the source's own bytes where it has them; the layouts are
 :mod:`lanterna.tiler.formats.layouts`), and :func:`add_planes_layer`
-tiles them, renders the manifest's preview image with the reference renderer
+tiles them (each group in the format :mod:`.plane_format` chooses for its source), renders
+the manifest's preview image with the reference renderer
 (:mod:`lanterna.tiler.render`, colour mode, overhead light) and registers the layer
 (schema: docs/dataset-format.md, maths: docs/rendering.md).
 """
@@ -30,6 +31,7 @@ from lanterna.tiler.formats.ptm_model import Ptm
 from lanterna.tiler.formats.strip_tiff import BandImage, StripTiffWriter
 from lanterna.tiler.render import render
 
+from .plane_format import AUTO, PlaneFormat, choose_format
 from .writer import DatasetWriter
 
 #: Pixels rendered at once for the preview of a file-backed layer (whole rows, at least one).
@@ -37,19 +39,24 @@ PREVIEW_PIXELS = 1 << 22
 
 
 def add_planes_layer(ds: DatasetWriter, layer: PlaneLayer, *, layer_id: str, label: str,
-                     share: dict[int, str] | None = None) -> dict[str, Any]:
+                     share: dict[int, str] | None = None,
+                     plane_format: PlaneFormat = AUTO) -> dict[str, Any]:
     """Tile the plane groups of ``layer`` and add it, with a preview, to the dataset.
 
     ``share`` maps a group index to a share key: groups with the same key across layers are
-    stored once (e.g. one normal map used by several material layers).
+    stored once (e.g. one normal map used by several material layers). ``plane_format`` is
+    ``--plane-format``: ``auto`` chooses each group's tile format by its source.
     """
     planes = []
     for i, group in enumerate(layer.groups):
         data = group.data
         image = data.vips() if isinstance(data, BandImage) else np.ascontiguousarray(data)
-        svc = ds.add_image(f"{layer_id}_{layer.group_names[i]}", image, fmt="png",
+        fmt = choose_format(group, plane_format, tile_size=ds.tile_size)
+        svc = ds.add_image(f"{layer_id}_{layer.group_names[i]}", image, fmt=fmt,
                            share_key=(share or {}).get(i))
-        planes.append({"service": svc, "format": "png", "channels": list(group.channels),
+        stored = ds.images[svc["id"].rsplit("/", 1)[1]]  # a shared group's first image
+        planes.append({"service": svc, "format": stored["format"],
+                       "channels": list(group.channels),
                        "scale": list(group.scale), "bias": list(group.bias)})
     block = {"layerType": layer.layer_type, **layer.fields(), "planes": planes}
     banded = [g.data for g in layer.groups if isinstance(g.data, BandImage)]
@@ -72,7 +79,7 @@ def add_planes_layer(ds: DatasetWriter, layer: PlaneLayer, *, layer_id: str, lab
 
 
 def add_ptm_layer(ds: DatasetWriter, ptm: Ptm, *, layer_id: str = "ptm",
-                  label: str = "PTM") -> dict[str, Any]:
+                  label: str = "PTM", plane_format: PlaneFormat = AUTO) -> dict[str, Any]:
     """Add a PTM layer whose stored texels are exactly the PTM's bytes.
 
     The file's ``a = (byte − b)·s`` in 0–255 units becomes ``(t − b/255)·s`` with ``t`` in
@@ -81,12 +88,14 @@ def add_ptm_layer(ds: DatasetWriter, ptm: Ptm, *, layer_id: str = "ptm",
     def coefficients(c: int | None, k: slice) -> PlaneData:
         return ptm.coefficients[..., k] if c is None else ptm.coefficients[:, :, c, k]
 
-    planes = ptm_plane_layer(ptm.colorspace, ptm.scale, ptm.bias, coefficients, ptm.rgb)
-    return add_planes_layer(ds, planes, layer_id=layer_id, label=label)
+    planes = ptm_plane_layer(ptm.colorspace, ptm.scale, ptm.bias, coefficients, ptm.rgb,
+                             lossy=ptm.lossy)
+    return add_planes_layer(ds, planes, layer_id=layer_id, label=label,
+                            plane_format=plane_format)
 
 
 def add_hsh_layer(ds: DatasetWriter, hsh: Hsh, *, layer_id: str = "hsh",
-                  label: str = "HSH") -> dict[str, Any]:
+                  label: str = "HSH", plane_format: PlaneFormat = AUTO) -> dict[str, Any]:
     """Add an HSH field: one IIIF image per term holding its R, G, B coefficients."""
     scales, biases = hsh_plane_quantisation(hsh)
 
@@ -95,7 +104,8 @@ def add_hsh_layer(ds: DatasetWriter, hsh: Hsh, *, layer_id: str = "hsh",
         return np.full_like(data, 255) if hsh.scale[k] == 0.0 else data
 
     planes = hsh_plane_layer(scales, biases, term)
-    return add_planes_layer(ds, planes, layer_id=layer_id, label=label)
+    return add_planes_layer(ds, planes, layer_id=layer_id, label=label,
+                            plane_format=plane_format)
 
 
 def add_svbrdf_layer(
@@ -110,8 +120,10 @@ def add_svbrdf_layer(
     gloss_limits: tuple[float, float] = (0.01, 0.5),
     input_colorspace: str = "linear",
     share: dict[str, str] | None = None,
+    lossy: frozenset[str] = frozenset(),
     layer_id: str = "svbrdf",
     label: str = "Shape and material",
+    plane_format: PlaneFormat = AUTO,
 ) -> dict[str, Any]:
     """Add a shape (normal map, depth) + material (kd, ks, gloss) layer; any subset of maps.
 
@@ -128,6 +140,10 @@ def add_svbrdf_layer(
     share:
         Optional map name → share key (e.g. the normal map's resolved path): maps with the same key
         across layers are stored once.
+    lossy:
+        The names of the maps read from lossy (JPEG) files.
+    plane_format:
+        ``--plane-format`` (:mod:`.plane_format`).
     """
     if input_colorspace not in ("linear", "srgb", "display"):
         raise ValueError("inputColorSpace must be linear, srgb or display, not "
@@ -150,13 +166,14 @@ def add_svbrdf_layer(
             raise ValueError(f"{name} map must be uint8 {expected}, got {data.dtype} {data.shape}")
         if share and name in share:
             shared[len(groups)] = share[name]
-        groups.append(PlaneGroup(channels, data, sc, bi))
+        groups.append(PlaneGroup(channels, data, sc, bi, name in lossy))
         names.append(name)
     if not groups:
         raise ValueError("a shape + material layer needs at least one map")
     planes = PlaneLayer("svbrdf", groups, group_names=names,
                         extra={"glossLimits": [lo, hi], "inputColorSpace": input_colorspace})
-    return add_planes_layer(ds, planes, layer_id=layer_id, label=label, share=shared)
+    return add_planes_layer(ds, planes, layer_id=layer_id, label=label, share=shared,
+                            plane_format=plane_format)
 
 
 def add_image_layer(ds: DatasetWriter, image: pyvips.Image, *, layer_id: str = "image",

@@ -25,6 +25,7 @@ import pyvips
 from lanterna.errors import LanternaInputError
 from lanterna.manifests.build import build_manifest
 from lanterna.manifests.services import with_plane_descriptions
+from lanterna.tiler.iiif.encoding import TileFormat, tile_format
 from lanterna.tiler.iiif.pyramid import vips_from_array, write_pyramid
 from lanterna.tiler.iiif.tiff import write_tiff
 
@@ -107,7 +108,7 @@ class DatasetWriter:
         return f"{self.base_url}/{self.name}"
 
     def add_image(self, identifier: str, image: npt.NDArray[np.uint8] | pyvips.Image, *,
-                  fmt: str = "png", share_key: str | None = None,
+                  fmt: str | TileFormat = "png", share_key: str | None = None,
                   size: tuple[int, int] | None = None) -> dict[str, Any]:
         """Tile ``image`` as IIIF image ``identifier``; return its ``ImageService3`` reference.
 
@@ -115,7 +116,9 @@ class DatasetWriter:
         layers) are stored and served once: later calls return the first image's service.
         ``size`` is the expected ``(width, height)`` when it is not the canvas's (overlay levels).
         With ``tiff=True`` the image is also written as ``tiff/<identifier>.tif``, a pyramidal
-        TIFF for the IIIF image server (recorded as the image's ``tiff`` field).
+        TIFF for the IIIF image server (recorded as the image's ``tiff`` field). ``fmt`` is the
+        tiles' format (:mod:`lanterna.tiler.iiif.encoding`), recorded as the image's ``format``
+        (and ``quality`` when it has one).
         """
         assert self._tmp is not None, "use DatasetWriter as a context manager"
         if share_key is not None and share_key in self._shared:
@@ -135,8 +138,11 @@ class DatasetWriter:
             (self._tmp / "iiif").mkdir(exist_ok=True)
             info = write_pyramid(vimg, self._tmp / "iiif" / identifier, service_id, fmt=fmt,
                                  tile_size=self.tile_size)
-        self.images[identifier] = {"format": fmt, "width": vimg.width, "height": vimg.height,
+        tf = tile_format(fmt)
+        self.images[identifier] = {"format": tf.ext, "width": vimg.width, "height": vimg.height,
                                    "bands": vimg.bands}
+        if tf.quality is not None:
+            self.images[identifier]["quality"] = tf.quality
         if "maxWidth" in info:  # full/max is a reduced level (large images)
             self.images[identifier].update(maxWidth=info["maxWidth"], maxHeight=info["maxHeight"])
         if self.tiff:

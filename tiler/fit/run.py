@@ -23,6 +23,7 @@ from lanterna.errors import LanternaInputError
 from lanterna.tiler.dataset.layers import add_planes_layer
 from lanterna.tiler.dataset.output import write_errors
 from lanterna.tiler.dataset.plan import LayerPlan, build_dataset
+from lanterna.tiler.dataset.plane_format import AUTO, PlaneFormat
 from lanterna.tiler.dataset.publish import writing
 from lanterna.tiler.dataset.writer import DEFAULT_BASE_URL
 from lanterna.tiler.formats.planes import PlaneLayer
@@ -97,6 +98,7 @@ def fit_sets(sets: Sequence[ImageSet], models: Sequence[str], out: Path, *,
              base_url: str = DEFAULT_BASE_URL, tile_size: int = 256, force: bool = False,
              band_rows: int | None = None, tiff: bool = False, scratch: Path | None = None,
              fit_space: str = "stored", scheduler: str | None = None,
+             plane_format: PlaneFormat = AUTO,
              report: Callable[[str], None] = lambda _: None,
              progress: ProgressFactory | None = None) -> dict[str, Any]:
     """Fit ``models`` to every image set (and fusion) and write them as one dataset ``out``.
@@ -108,7 +110,9 @@ def fit_sets(sets: Sequence[ImageSet], models: Sequence[str], out: Path, *,
     into the scratch folder (:mod:`~lanterna.tiler.inputs.raw`).  ``fit_space`` is ``"stored"``
     (values as stored, the RTI convention) or ``"linear"`` (the photometric models fit
     linear light).  ``scheduler`` (a Dask scheduler address, or ``local[:N]``) solves the row
-    bands on that cluster (:mod:`~lanterna.tiler.fit.cluster`), with the same result.  Returns
+    bands on that cluster (:mod:`~lanterna.tiler.fit.cluster`), with the same result.
+    ``plane_format`` (``--plane-format``) is the planes' tile format (fitted planes are a
+    lossless source: ``auto`` stores the smaller of PNG and lossless WebP).  Returns
     the quality report (also stored as ``quality``).
     """
     table = model_table(terms, band_rows)
@@ -197,7 +201,8 @@ def fit_sets(sets: Sequence[ImageSet], models: Sequence[str], out: Path, *,
                     quality["models"][lid] = q
                     report(f"{lid}: leave-one-out PSNR mean {q['meanPsnr']:.2f} dB, "
                            f"median {q['medianPsnr']:.2f} dB over {len(q['heldOut'])} lights")
-                plans.append(_plan(result.layers[key], lid, tag + model.label, source))
+                plans.append(_plan(result.layers[key], lid, tag + model.label, source,
+                                   plane_format))
         default_label = sets[0].images_dir.name if len(sets) == 1 else Path(out).name
         build_dataset(plans, out, name=name or Path(out).name, label=label or default_label,
                       base_url=base_url, tile_size=tile_size, force=force, quality=quality,
@@ -239,10 +244,11 @@ def _open_set(s: ImageSet, scratch: Path, progress: ProgressFactory | None
     return reader, lights
 
 
-def _plan(layer: PlaneLayer, lid: str, label: str, source: str) -> LayerPlan:
+def _plan(layer: PlaneLayer, lid: str, label: str, source: str,
+          plane_format: PlaneFormat) -> LayerPlan:
     """A dataset layer from fitted planes; a fitted normal map is stored once per dataset."""
     share = {i: f"fitted:{getattr(g.data, 'path', '')}" for i, g in enumerate(layer.groups)
              if layer.group_names[i] == "normals"}
     return LayerPlan(lid, label, layer.width, layer.height, source,
                      lambda ds: add_planes_layer(ds, layer, layer_id=lid, label=label,
-                                                 share=share))
+                                                 share=share, plane_format=plane_format))

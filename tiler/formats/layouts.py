@@ -41,9 +41,10 @@ def hsh_plane_quantisation(hsh: Hsh) -> tuple[list[float], list[float]]:
 
 def ptm_plane_layer(colorspace: str, scale: npt.ArrayLike, bias: npt.ArrayLike,
                     coefficients: Callable[[int | None, slice], PlaneData],
-                    rgb: PlaneData | None) -> PlaneLayer:
+                    rgb: PlaneData | None, *, lossy: bool = False) -> PlaneLayer:
     """The plane groups of a PTM: ``c0, c1, color`` (lrgb) or ``r0, r1, g0, … b1`` (rgb).
 
+    ``lossy``: the bytes are a lossy decode (a JPEG PTM), marked on every group.
     ``scale``/``bias`` are the file's per-coefficient values (``a = (byte − b)·s`` in 0–255
     units), stored as ``(t − b/255)·s`` with ``t`` in 0–1 (docs/dataset-format.md);
     ``coefficients(c, k)`` returns the bytes of channel ``c`` (``None`` for lrgb), terms ``k``.
@@ -57,16 +58,16 @@ def ptm_plane_layer(colorspace: str, scale: npt.ArrayLike, bias: npt.ArrayLike,
         for g in range(2):
             k = slice(3 * g, 3 * g + 3)
             groups.append(PlaneGroup([f"L{i}" for i in range(3 * g, 3 * g + 3)],
-                                     coefficients(None, k), sc[k], bi[k]))
+                                     coefficients(None, k), sc[k], bi[k], lossy))
             names.append(f"c{g}")
-        groups.append(PlaneGroup(["R", "G", "B"], rgb, [1.0] * 3, [0.0] * 3))
+        groups.append(PlaneGroup(["R", "G", "B"], rgb, [1.0] * 3, [0.0] * 3, lossy))
         names.append("color")
     else:
         for c, name in enumerate("RGB"):
             for g in range(2):
                 k = slice(3 * g, 3 * g + 3)
                 groups.append(PlaneGroup([f"{name}{i}" for i in range(3 * g, 3 * g + 3)],
-                                         coefficients(c, k), sc[k], bi[k]))
+                                         coefficients(c, k), sc[k], bi[k], lossy))
                 names.append(f"{name.lower()}{g}")
     return PlaneLayer("ptm", groups, colorspace=colorspace, group_names=names)
 

@@ -22,12 +22,17 @@ PlaneData = npt.NDArray[np.uint8] | BandImage
 
 @dataclass(frozen=True)
 class PlaneGroup:
-    """One stored image: 1 or 3 channels, ``data`` uint8 ``(H, W, n)`` or ``(H, W)``."""
+    """One stored image: 1 or 3 channels, ``data`` uint8 ``(H, W, n)`` or ``(H, W)``.
+
+    ``lossy`` says the bytes are the decode of a lossy source (a JPEG stream or file), so its
+    tiles may be lossy within a bound (:mod:`lanterna.tiler.dataset.plane_format`).
+    """
 
     channels: list[str]
     data: PlaneData
     scale: list[float]
     bias: list[float]
+    lossy: bool = False
 
     def __post_init__(self) -> None:
         n = len(self.channels)

@@ -339,7 +339,7 @@ def _ptm_from_planes(header: PtmHeader, colorspace: str, planes: npt.NDArray[np.
     if colorspace == "lrgb":
         coeffs = np.ascontiguousarray(planes[:6].transpose(1, 2, 0))
         rgb = np.ascontiguousarray(planes[6:].transpose(1, 2, 0))
-        return Ptm("lrgb", coeffs, header.scale, header.bias, rgb)
+        return Ptm("lrgb", coeffs, header.scale, header.bias, rgb, lossy=True)
     # Stream i is colour i // 6, coefficient i % 6.
     coeffs = np.ascontiguousarray(planes.reshape(3, 6, h, w).transpose(2, 3, 0, 1))
-    return Ptm("rgb", coeffs, header.scale, header.bias)
+    return Ptm("rgb", coeffs, header.scale, header.bias, lossy=True)

@@ -32,6 +32,8 @@ class Ptm:
         in 0–255 units (the HP PTM convention); :meth:`dequantized` gives ``a/255``.
     rgb:
         ``uint8`` array ``(H, W, 3)`` for lrgb; ``None`` for rgb.
+    lossy:
+        True when the bytes are a lossy decode (the JPEG streams of ``PTM_FORMAT_JPEG_*``).
     """
 
     colorspace: str
@@ -39,6 +41,7 @@ class Ptm:
     scale: npt.NDArray[np.float32]
     bias: npt.NDArray[np.int32]
     rgb: npt.NDArray[np.uint8] | None = None
+    lossy: bool = False
 
     def __post_init__(self) -> None:
         c = self.coefficients

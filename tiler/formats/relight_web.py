@@ -75,27 +75,29 @@ def read_relight(folder: str | Path) -> PlaneLayer:
     # every plane's header first (sizes compared, nothing decoded), then the pixels
     opened = [_open_plane(info_path.parent, i, ext, width, height) for i in range(nplanes // 3)]
     planes = np.stack([c for path, image in opened for c in _decode_plane(path, image)])
+    lossy = ext == "jpg"  # the planes are JPEG decodes
     extra: dict[str, object] = {"source": "relight", "nplanes": nplanes}
     if isinstance(info.get("quality"), int):
         extra["quality"] = info["quality"]
     if rtype == "hsh":
         rgb = [list(range(3 * k, 3 * k + 3)) for k in range(nplanes // 3)]
         groups = [PlaneGroup([f"R{k}", f"G{k}", f"B{k}"], _stack(planes, rgb[k]),
-                             scale[3 * k : 3 * k + 3], bias[3 * k : 3 * k + 3])
+                             scale[3 * k : 3 * k + 3], bias[3 * k : 3 * k + 3], lossy)
                   for k in range(nplanes // 3)]
         return PlaneLayer("hsh", groups, None, nplanes // 3, extra)
     if colorspace == "lrgb":
         lum = [3 + t for t in PTM_TERM_OF]  # Relight plane of each Lanterna L channel
         groups = [_ptm_group(planes, [f"L{j}" for j in range(g, g + 3)], lum[g : g + 3],
-                             scale, bias) for g in (0, 3)]
-        groups.append(PlaneGroup(["R", "G", "B"], _stack(planes, [0, 1, 2]), scale[:3], bias[:3]))
+                             scale, bias, lossy) for g in (0, 3)]
+        groups.append(PlaneGroup(["R", "G", "B"], _stack(planes, [0, 1, 2]), scale[:3], bias[:3],
+                                 lossy))
     else:
         groups = []
         for c, name in enumerate("RGB"):
             for g in (0, 3):
                 idx = [3 * t + c for t in PTM_TERM_OF[g : g + 3]]
                 groups.append(_ptm_group(planes, [f"{name}{j}" for j in range(g, g + 3)], idx,
-                                         scale, bias))
+                                         scale, bias, lossy))
     return PlaneLayer("ptm", groups, colorspace, None, extra)
 
 
@@ -212,11 +214,11 @@ def _stack(planes: npt.NDArray[np.uint8], idx: list[int]) -> npt.NDArray[np.uint
 
 
 def _ptm_group(planes: npt.NDArray[np.uint8], channels: list[str], idx: list[int],
-               scale: list[float], bias: list[float]) -> PlaneGroup:
+               scale: list[float], bias: list[float], lossy: bool) -> PlaneGroup:
     """One PTM group; planes beyond a degree-1 PTM become zero channels (scale 0, bias 0)."""
     n = planes.shape[0]
     if all(i >= n for i in idx):
         zeros = np.zeros(planes.shape[1:] + (3,), np.uint8)
         return PlaneGroup(channels, zeros, [0.0] * 3, [0.0] * 3)
     return PlaneGroup(channels, _stack(planes, idx), [scale[i] for i in idx],
-                      [bias[i] for i in idx])
+                      [bias[i] for i in idx], lossy)

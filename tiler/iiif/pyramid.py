@@ -2,7 +2,8 @@
 
 ``dzsave(layout="iiif3")`` writes the tiles; then :func:`write_pyramid` makes the tree complete
 for level 0 and for the clients we support (see ``docs/dataset-format.md``, "Pyramids"):
-``sizes``, ``full/max`` in jpg (and png), ``preferredFormats``/``extraFormats`` for PNG trees,
+``sizes``, ``full/max`` in jpg (and in the tree's own format), ``preferredFormats``/``extraFormats``
+for PNG and WebP trees,
 ``maxWidth``/``maxHeight`` past the JPEG limit, and every tile URL OpenSeadragon or the spec's
 algorithm asks for, including single-tile images.
 
@@ -28,6 +29,7 @@ import numpy.typing as npt
 import pyvips
 
 from . import geometry as geo
+from .encoding import JPG, TileFormat, save, tile_format
 from .spec import IMAGE_CONTEXT, IMAGE_PROTOCOL
 
 #: Largest side of the ``sizes`` entries we list (and so must serve as whole images).
@@ -37,7 +39,6 @@ SIZES_LIMIT = 2048
 #: full-resolution encode (a gigapixel JPEG nobody should download, costing more than the whole
 #: pyramid).
 FULL_MAX_LIMIT = SIZES_LIMIT
-JPEG_QUALITY = 90
 
 
 def vips_from_array(array: npt.NDArray[np.uint8]) -> pyvips.Image:
@@ -53,7 +54,7 @@ def write_pyramid(
     out_dir: Path,
     service_id: str,
     *,
-    fmt: str = "png",
+    fmt: str | TileFormat = "png",
     tile_size: int = 256,
 ) -> dict[str, Any]:
     """Write ``image`` as a level-0 IIIF tree in ``out_dir`` (which must not exist).
@@ -67,32 +68,29 @@ def write_pyramid(
     service_id:
         The ``id`` of the image service (the URL ``out_dir`` is served at).
     fmt:
-        ``"png"`` (lossless: coefficient planes) or ``"jpg"`` (Q90, 4:4:4).
+        The tiles' format (:mod:`.encoding`): ``"png"``, ``"webp"`` (lossless), ``"jpg"``
+        (Q90, 4:4:4) or a :class:`~.encoding.TileFormat` with a quality.
 
     Returns
     -------
     The info.json document written.
     """
-    if fmt not in ("png", "jpg"):
-        raise ValueError(f"unknown tile format {fmt!r}")
+    tf = tile_format(fmt)
     out_dir = Path(out_dir)
     if out_dir.exists():
         raise FileExistsError(out_dir)
     width, height = image.width, image.height
     scratch = Path(tempfile.mkdtemp(prefix=".dz-", dir=out_dir.parent))
     try:
-        save: dict[str, Any] = {"layout": "iiif3", "tile_size": tile_size, "overlap": 0}
-        if fmt == "png":
-            save["suffix"] = ".png[compression=3]"
-        else:
-            save["Q"] = JPEG_QUALITY
+        dz: dict[str, Any] = {"layout": "iiif3", "tile_size": tile_size, "overlap": 0,
+                              "suffix": tf.dz_suffix()}
         factors = geo.scale_factors(width, height, tile_size)
         cap = full_max_factor(width, height, factors)
-        full_max = _FullMax(image, scratch, fmt) if cap == 1 else None
+        full_max = _FullMax(image, scratch, tf) if cap == 1 else None
         if full_max:
             full_max.start()
         try:
-            image.dzsave(str(scratch / out_dir.name), id="http://lanterna.invalid", **save)
+            image.dzsave(str(scratch / out_dir.name), id="http://lanterna.invalid", **dz)
         except pyvips.Error as err:
             if full_max:
                 full_max.join()
@@ -109,18 +107,18 @@ def write_pyramid(
     finally:
         shutil.rmtree(scratch, ignore_errors=True)
 
-    _complete_tiles(image, out_dir, fmt, tile_size, factors)
-    info = _info_json(width, height, service_id, fmt, tile_size, factors)
+    _complete_tiles(image, out_dir, tf, tile_size, factors)
+    info = _info_json(width, height, service_id, tf.ext, tile_size, factors)
     for factor in factors:
         sw, sh = geo.level_size(width, height, factor)
         if max(sw, sh) <= SIZES_LIMIT:
-            _ensure(image, out_dir, fmt, geo.TileRequest(0, 0, width, height, sw, sh),
-                    f"full/{sw},{sh}", _level_from_tiles(out_dir, fmt, width, height,
+            _ensure(image, out_dir, tf, geo.TileRequest(0, 0, width, height, sw, sh),
+                    f"full/{sw},{sh}", _level_from_tiles(out_dir, tf.ext, width, height,
                                                          tile_size, factor))
     if cap > 1:  # full/max is the level `cap`: link its sizes file, encode the other format
         mw, mh = geo.level_size(width, height, cap)
-        make = _level_from_tiles(out_dir, fmt, width, height, tile_size, cap)
-        for ext in sorted({"jpg", fmt}):
+        make = _level_from_tiles(out_dir, tf.ext, width, height, tile_size, cap)
+        for ext, ext_fmt in _full_max_formats(tf).items():
             target = _tile_file(out_dir, "full/max", ext)
             target.unlink(missing_ok=True)  # dzsave's own full/max is the full resolution
             target.parent.mkdir(parents=True, exist_ok=True)
@@ -130,10 +128,15 @@ def write_pyramid(
             else:
                 level = make()  # a fresh sequential read per file
                 assert level is not None
-                _save(level, target)
+                save(level, target, ext_fmt)
     # only integers and strings: allow_nan=False is a guard, never a user's error
     (out_dir / "info.json").write_text(json.dumps(info, indent=2, allow_nan=False))
     return info
+
+
+def _full_max_formats(fmt: TileFormat) -> dict[str, TileFormat]:
+    """The formats ``full/max`` is written in: jpg (level 0 requires it) and the tree's own."""
+    return {"jpg": fmt if fmt.ext == "jpg" else JPG, fmt.ext: fmt}
 
 
 def full_max_factor(width: int, height: int, factors: list[int]) -> int:
@@ -145,25 +148,26 @@ def full_max_factor(width: int, height: int, factors: list[int]) -> int:
 
 
 class _FullMax(threading.Thread):
-    """Write ``full/max`` (jpg, and png for PNG trees) into a scratch folder, in a thread.
+    """Write ``full/max`` (jpg, and the tree's format) into a scratch folder, in a thread.
 
     Level 0 requires ``full/max/0/default.jpg``; at full resolution it is one more encode of the
     whole image. dzsave keeps the cores only partly busy, so running this alongside it costs
     little wall time. Errors are re-raised by :meth:`raise_error`.
     """
 
-    def __init__(self, image: pyvips.Image, scratch: Path, fmt: str) -> None:
+    def __init__(self, image: pyvips.Image, scratch: Path, fmt: TileFormat) -> None:
         super().__init__(name="lanterna-full-max", daemon=True)
         self._image = image
-        self._files = {ext: scratch / f"full-max.{ext}" for ext in sorted({"jpg", fmt})}
+        self._formats = _full_max_formats(fmt)
+        self._files = {ext: scratch / f"full-max.{ext}" for ext in self._formats}
         self._error: Exception | None = None
 
     def run(self) -> None:
         try:
             w, h = self._image.width, self._image.height
             req = geo.TileRequest(0, 0, w, h, w, h)
-            for target in self._files.values():
-                _render(self._image, req, target)
+            for ext, target in self._files.items():
+                _render(self._image, req, target, self._formats[ext])
         except Exception as err:  # handed to the caller's thread by raise_error
             # without its traceback: that holds this thread (a cycle) and the failed save's
             # open file, which on a full disk would hold its space until the collector runs
@@ -213,9 +217,9 @@ def _info_json(width: int, height: int, service_id: str, fmt: str, tile_size: in
     if not info["sizes"]:
         del info["sizes"]
     info["tiles"] = [{"width": tile_size, "height": tile_size, "scaleFactors": factors}]
-    if fmt == "png":
-        info["preferredFormats"] = ["png"]
-        info["extraFormats"] = ["png"]
+    if fmt != "jpg":
+        info["preferredFormats"] = [fmt]
+        info["extraFormats"] = [fmt]
     return info
 
 
@@ -223,7 +227,7 @@ def _tile_file(out_dir: Path, path: str, fmt: str) -> Path:
     return out_dir / path / "0" / f"default.{fmt}"
 
 
-def _complete_tiles(image: pyvips.Image, out_dir: Path, fmt: str, tile_size: int,
+def _complete_tiles(image: pyvips.Image, out_dir: Path, fmt: TileFormat, tile_size: int,
                     factors: list[int]) -> None:
     """Give every tile a client may ask for a file, reusing dzsave's file for the same pixels.
 
@@ -236,7 +240,7 @@ def _complete_tiles(image: pyvips.Image, out_dir: Path, fmt: str, tile_size: int
         for f in factors
         for t in geo.spec_tiles(width, height, tile_size, f)
     }
-    name = f"default.{fmt}"
+    name = f"default.{fmt.ext}"
     written = {f"{region.name}/{size.name}"
                for region in os.scandir(out_dir) if region.is_dir()
                for size in os.scandir(region.path)
@@ -245,7 +249,7 @@ def _complete_tiles(image: pyvips.Image, out_dir: Path, fmt: str, tile_size: int
         _ensure(image, out_dir, fmt, geo.parse_region_size(width, height, path), path)
 
 
-def _ensure(image: pyvips.Image, out_dir: Path, fmt: str, req: geo.TileRequest,
+def _ensure(image: pyvips.Image, out_dir: Path, fmt: TileFormat, req: geo.TileRequest,
             path: str | None = None,
             source: Callable[[], pyvips.Image | None] | None = None) -> None:
     """Make sure the request ``req`` (at URL ``path``, else its canonical path) has a file.
@@ -255,20 +259,20 @@ def _ensure(image: pyvips.Image, out_dir: Path, fmt: str, req: geo.TileRequest,
     """
     width, height = image.width, image.height
     path = path or geo.canonical_path(width, height, req)
-    target = _tile_file(out_dir, path, fmt)
+    target = _tile_file(out_dir, path, fmt.ext)
     if target.exists():
         return
     target.parent.mkdir(parents=True, exist_ok=True)
     for alias in _aliases(width, height, req):
-        existing = _tile_file(out_dir, alias, fmt)
+        existing = _tile_file(out_dir, alias, fmt.ext)
         if existing.exists():
             os.link(existing, target)
             return
     made = source() if source is not None else None
     if made is not None and (made.width, made.height) == (req.sw, req.sh):
-        _save(made, target)
+        save(made, target, fmt)
     else:
-        _render(image, req, target)
+        _render(image, req, target, fmt)
 
 
 def _level_from_tiles(out_dir: Path, fmt: str, width: int, height: int, tile_size: int,
@@ -304,17 +308,8 @@ def _aliases(width: int, height: int, req: geo.TileRequest) -> list[str]:
     return [f"{r}/{s}" for r in regions for s in sizes]
 
 
-def _render(image: pyvips.Image, req: geo.TileRequest, target: Path) -> None:
+def _render(image: pyvips.Image, req: geo.TileRequest, target: Path, fmt: TileFormat) -> None:
     region = image.crop(req.x, req.y, req.w, req.h)
     if (req.sw, req.sh) != (req.w, req.h):
         region = region.resize(req.sw / req.w, vscale=req.sh / req.h)
-    _save(region, target)
-
-
-def _save(image: pyvips.Image, target: Path) -> None:
-    if target.suffix == ".png":
-        image.pngsave(str(target), compression=3)
-    else:
-        if image.hasalpha():
-            image = image.flatten()
-        image.jpegsave(str(target), Q=JPEG_QUALITY)
+    save(region, target, fmt)

@@ -3,8 +3,9 @@
 The file is a standard tiled multi-resolution TIFF as libvips ``tiffsave(pyramid=True)`` writes
 it: full resolution in the first page (IFD), then each level half the size of the one before in
 the following pages, until a level fits in one tile. IIPImage and Cantaloupe read it as is (see
-``docs/serving.md``). Coefficient planes (``png`` images) are stored with lossless deflate, so the
-data survives bit for bit; ``jpg`` images use JPEG Q90.
+``docs/serving.md``). Images whose tiles are lossless or near-lossless (``png``, ``webp``) are
+stored with lossless deflate, so the data survives bit for bit (IIPImage and Cantaloupe do not
+all read WebP-compressed TIFF); ``jpg`` images use JPEG at the tiles' quality (default Q90).
 """
 
 from __future__ import annotations
@@ -15,18 +16,20 @@ from typing import Any
 
 import pyvips
 
+from .encoding import TileFormat, tile_format
+
 #: Tile size of the TIFF (IIPImage's convention; independent of the dataset's IIIF tile size).
 TIFF_TILE = 256
-JPEG_QUALITY = 90
 
 
-def tiff_options(fmt: str) -> dict[str, Any]:
-    """Return the ``tiffsave`` options for images of dataset format ``fmt`` (``png``/``jpg``).
+def tiff_options(fmt: str | TileFormat) -> dict[str, Any]:
+    """Return the ``tiffsave`` options for images of dataset format ``fmt``.
 
     Parameters
     ----------
     fmt:
-        ``"png"``: lossless deflate with the horizontal predictor. ``"jpg"``: JPEG Q90.
+        ``"png"``, ``"webp"``: lossless deflate with the horizontal predictor. ``"jpg"``: JPEG
+        at the format's quality (Q90 by default).
 
     Returns
     -------
@@ -34,14 +37,13 @@ def tiff_options(fmt: str) -> dict[str, Any]:
     """
     common: dict[str, Any] = {"tile": True, "pyramid": True, "tile_width": TIFF_TILE,
                               "tile_height": TIFF_TILE, "bigtiff": False}
-    if fmt == "png":
-        return {**common, "compression": "deflate", "predictor": "horizontal"}
-    if fmt == "jpg":
-        return {**common, "compression": "jpeg", "Q": JPEG_QUALITY}
-    raise ValueError(f"unknown image format {fmt!r} (expected png or jpg)")
+    tf = tile_format(fmt)
+    if tf.ext == "jpg":
+        return {**common, "compression": "jpeg", "Q": tf.options()["Q"]}
+    return {**common, "compression": "deflate", "predictor": "horizontal"}
 
 
-def write_tiff(image: pyvips.Image, path: Path, *, fmt: str = "png") -> Path:
+def write_tiff(image: pyvips.Image, path: Path, *, fmt: str | TileFormat = "png") -> Path:
     """Write ``image`` as a tiled pyramidal TIFF at ``path``, atomically.
 
     The file is written under a temporary name beside ``path`` and renamed into place, so a
@@ -54,7 +56,7 @@ def write_tiff(image: pyvips.Image, path: Path, *, fmt: str = "png") -> Path:
     path:
         The ``.tif`` file to create (its folder must exist); an existing file is replaced.
     fmt:
-        The dataset image format: ``"png"`` (lossless) or ``"jpg"`` (JPEG Q90).
+        The dataset image format: ``"png"``/``"webp"`` (stored lossless) or ``"jpg"`` (JPEG).
 
     Returns
     -------
@@ -63,7 +65,7 @@ def write_tiff(image: pyvips.Image, path: Path, *, fmt: str = "png") -> Path:
     options = tiff_options(fmt)
     if image.format != "uchar":
         raise ValueError(f"write_tiff needs an 8-bit image, got {image.format}")
-    if fmt == "jpg" and image.hasalpha():
+    if tile_format(fmt).ext == "jpg" and image.hasalpha():
         image = image.flatten()
     # Files over 4 GB need BigTIFF, which older readers refuse; use it only when needed.
     options["bigtiff"] = image.width * image.height * image.bands * 4 // 3 > 3_900_000_000

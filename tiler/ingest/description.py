@@ -26,6 +26,7 @@ from typing import Any
 
 from lanterna.errors import LanternaInputError
 from lanterna.tiler.dataset.plan import LayerPlan
+from lanterna.tiler.dataset.plane_format import AUTO, PlaneFormat
 from lanterna.tiler.documents import check_document, load_json
 
 from .overlay import attach_overlay
@@ -71,21 +72,22 @@ class BandsEntry:
 Entry = SourceEntry | SvbrdfEntry | BandsEntry
 
 
-def plan_description(path: Path, *, root: Path | None = None
-                     ) -> tuple[dict[str, Any], list[LayerPlan]]:
+def plan_description(path: Path, *, root: Path | None = None,
+                     plane_format: PlaneFormat = AUTO) -> tuple[dict[str, Any], list[LayerPlan]]:
     """Return the dataset fields (name, label, summary) and the layer plans of a description.
 
     ``root``: every file the description names must be inside this folder (for descriptions that
-    do not come from the command line: :mod:`.paths`).
+    do not come from the command line: :mod:`.paths`). ``plane_format``: ``--plane-format``.
     """
     path = Path(path)
     doc = load_json(path)
     if is_scene(doc):
-        return plan_scene(check_document(doc, "scene", path), path, root=root)
+        return plan_scene(check_document(doc, "scene", path), path, root=root,
+                          plane_format=plane_format)
     doc = check_document(doc, "description", path)
     plans: list[LayerPlan] = []
     for entry in read_entries(doc, path, root=root):
-        plans.extend(plan_entry(entry, path.parent))
+        plans.extend(plan_entry(entry, path.parent, plane_format))
     fields: dict[str, Any] = {k: doc[k] for k in ("name", "label", "summary") if k in doc}
     return fields, plans
 
@@ -125,7 +127,7 @@ def read_entries(doc: dict[str, Any], path: Path, *, root: Path | None = None) -
     return entries
 
 
-def plan_entry(entry: Entry, base: Path) -> list[LayerPlan]:
+def plan_entry(entry: Entry, base: Path, plane_format: PlaneFormat = AUTO) -> list[LayerPlan]:
     """The layer plans of one entry (``base``: the folder overlay images are relative to)."""
     if isinstance(entry, BandsEntry):
         return plan_bands(entry.bands, entry.fusions)
@@ -133,9 +135,11 @@ def plan_entry(entry: Entry, base: Path) -> list[LayerPlan]:
         plan = plan_svbrdf(entry.maps, layer_id=entry.id, label=entry.label,
                            gloss_limits=entry.gloss_limits,
                            input_colorspace=entry.input_colorspace,
-                           normal_convention=entry.normal_convention)
+                           normal_convention=entry.normal_convention,
+                           plane_format=plane_format)
     else:
-        plan = plan_source(entry.source, layer_id=entry.id, label=entry.label)
+        plan = plan_source(entry.source, layer_id=entry.id, label=entry.label,
+                           plane_format=plane_format)
     if entry.overlay is not None:
         attach_overlay(plan, entry.overlay, base)
     return [plan]

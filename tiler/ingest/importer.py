@@ -7,6 +7,7 @@ from pathlib import Path
 
 from lanterna.errors import LanternaInputError
 from lanterna.tiler.dataset.plan import LayerPlan, build_dataset
+from lanterna.tiler.dataset.plane_format import AUTO, PlaneFormat
 from lanterna.tiler.dataset.writer import DEFAULT_BASE_URL, check_identifier
 
 from .description import plan_description
@@ -16,24 +17,27 @@ from .sources import plan_bands, plan_source
 def import_sources(sources: Sequence[Path], out: Path, *, name: str | None = None,
                    label: str | None = None, bands: dict[str, Path] | None = None,
                    fusions: Sequence[Sequence[str]] = (), base_url: str = DEFAULT_BASE_URL,
-                   tile_size: int = 256, force: bool = False, tiff: bool = False) -> Path:
+                   tile_size: int = 256, force: bool = False, tiff: bool = False,
+                   plane_format: PlaneFormat = AUTO) -> Path:
     """Import sources as the layers of dataset ``out`` (in order; the first is the default).
 
     A source is a ``.ptm``, ``.rti``, a Relight web-format folder, an image, or a dataset
     description ``.json`` (Lanterna's or the seed paper's scene format). ``bands`` adds one grey
     layer per spectral band, ``fusions`` one false-colour layer per band triple. ``tiff`` also
     writes a pyramidal TIFF per image (``tiff/<image>.tif``) for the IIIF image server.
+    ``plane_format`` (``--plane-format``) is the tile format of relightable layers' planes
+    (:mod:`lanterna.tiler.dataset.plane_format`).
     """
     plans: list[LayerPlan] = []
     fields: dict[str, str] = {}
     for source in sources:
         source = Path(source)
         if source.suffix.lower() == ".json" and source.is_file():
-            desc_fields, desc_plans = plan_description(source)
+            desc_fields, desc_plans = plan_description(source, plane_format=plane_format)
             fields = {**desc_fields, **fields}
             plans.extend(desc_plans)
         else:
-            plans.append(plan_source(source))
+            plans.append(plan_source(source, plane_format=plane_format))
     if bands:
         plans.extend(plan_bands(bands, fusions))
     elif fusions:

@@ -23,8 +23,9 @@ import numpy as np
 from lanterna.errors import LanternaInputError
 from lanterna.tiler.dataset.layers import add_planes_layer
 from lanterna.tiler.dataset.plan import LayerPlan
+from lanterna.tiler.dataset.plane_format import AUTO, PlaneFormat
 from lanterna.tiler.formats.planes import PlaneGroup, PlaneLayer
-from lanterna.tiler.inputs.maps import load_color_map
+from lanterna.tiler.inputs.maps import is_lossy_file, load_color_map
 from lanterna.tiler.limits import check_quantisation
 
 from .overlay import attach_overlay
@@ -98,20 +99,21 @@ def read_scene(doc: dict[str, Any], path: Path, *, root: Path | None = None) -> 
     return layers
 
 
-def plan_scene(doc: dict[str, Any], path: Path, *, root: Path | None = None
-               ) -> tuple[dict[str, Any], list[LayerPlan]]:
+def plan_scene(doc: dict[str, Any], path: Path, *, root: Path | None = None,
+               plane_format: PlaneFormat = AUTO) -> tuple[dict[str, Any], list[LayerPlan]]:
     """Plan the layers of a seed-paper scene (checked against its schema); return dataset fields
     and plans."""
     base = Path(path).parent
     plans = []
     for layer in read_scene(doc, path, root=root):
         if layer.shader == "LRGB_PTM":
-            plan = _plan_ptm(layer, path)
+            plan = _plan_ptm(layer, path, plane_format)
         else:
             plan = plan_svbrdf({_SCENE_MAP_NAMES[k]: f for k, f in layer.maps.items()},
                                layer_id=layer.id, label=layer.label,
                                gloss_limits=layer.gloss_limits,
-                               input_colorspace=layer.input_colorspace)
+                               input_colorspace=layer.input_colorspace,
+                               plane_format=plane_format)
         if layer.overlay is not None:
             attach_overlay(plan, layer.overlay, base)
         plans.append(plan)
@@ -126,18 +128,21 @@ def plan_scene(doc: dict[str, Any], path: Path, *, root: Path | None = None
     return fields, plans
 
 
-def _plan_ptm(layer: SceneLayer, path: Path) -> LayerPlan:
+def _plan_ptm(layer: SceneLayer, path: Path, plane_format: PlaneFormat) -> LayerPlan:
     images = [load_color_map(layer.maps[m]) for m in _PTM_MAPS]
     if len({im.shape for im in images}) != 1:
         raise LanternaInputError(path, f"layer {layer.id}: the coefficient maps differ in size")
     s = list(layer.scale)
     b = [v / 255.0 for v in layer.bias]
     check_quantisation(path, s, b, f"layer {layer.id}: LRGB_PTM")
+    lossy = [is_lossy_file(layer.maps[m]) for m in _PTM_MAPS]
     planes = PlaneLayer("ptm", [
-        PlaneGroup(["L0", "L1", "L2"], np.ascontiguousarray(images[0]), s[0:3], b[0:3]),
-        PlaneGroup(["L3", "L4", "L5"], np.ascontiguousarray(images[1]), s[3:6], b[3:6]),
-        PlaneGroup(["R", "G", "B"], np.ascontiguousarray(images[2]), [1.0] * 3, [0.0] * 3),
+        PlaneGroup(["L0", "L1", "L2"], np.ascontiguousarray(images[0]), s[0:3], b[0:3], lossy[0]),
+        PlaneGroup(["L3", "L4", "L5"], np.ascontiguousarray(images[1]), s[3:6], b[3:6], lossy[1]),
+        PlaneGroup(["R", "G", "B"], np.ascontiguousarray(images[2]), [1.0] * 3, [0.0] * 3,
+                   lossy[2]),
     ], colorspace="lrgb")
     lid, label = layer.id, layer.label
     return LayerPlan(lid, label, planes.width, planes.height, layer.maps["coeff_0_1_2"].name,
-                     lambda ds: add_planes_layer(ds, planes, layer_id=lid, label=label))
+                     lambda ds: add_planes_layer(ds, planes, layer_id=lid, label=label,
+                                                 plane_format=plane_format))

@@ -20,6 +20,7 @@ from lanterna.tiler.dataset.layers import (
     add_svbrdf_layer,
 )
 from lanterna.tiler.dataset.plan import LayerPlan
+from lanterna.tiler.dataset.plane_format import AUTO, PlaneFormat
 from lanterna.tiler.dataset.writer import DatasetWriter, check_identifier
 from lanterna.tiler.formats.hsh import read_rti
 from lanterna.tiler.formats.layouts import SVBRDF_MAPS
@@ -28,6 +29,7 @@ from lanterna.tiler.formats.relight_web import read_relight
 from lanterna.tiler.iiif.pyramid import vips_from_array
 from lanterna.tiler.inputs.images import load_rgb_image
 from lanterna.tiler.inputs.maps import (
+    is_lossy_file,
     load_band,
     load_color_map,
     load_depth_map,
@@ -44,8 +46,13 @@ def layer_id_from(stem: str) -> str:
     return cleaned or "layer"
 
 
-def plan_source(path: Path, *, layer_id: str | None = None, label: str | None = None) -> LayerPlan:
-    """Plan a layer from one source: ``.ptm``, ``.rti``, a Relight folder or an image."""
+def plan_source(path: Path, *, layer_id: str | None = None, label: str | None = None,
+                plane_format: PlaneFormat = AUTO) -> LayerPlan:
+    """Plan a layer from one source: ``.ptm``, ``.rti``, a Relight folder or an image.
+
+    ``plane_format`` (``--plane-format``) is the tile format of the planes of relightable layers;
+    plain images keep their own format.
+    """
     path = Path(path)
     lid = check_identifier(layer_id or layer_id_from(path.stem), "layer id")
     if path.is_dir():
@@ -56,7 +63,8 @@ def plan_source(path: Path, *, layer_id: str | None = None, label: str | None = 
         kind = f"{planes.layer_type.upper()} {(planes.colorspace or '').upper()}".strip()
         lbl = label or f"{path.name} ({kind}, Relight)"
         return LayerPlan(lid, lbl, planes.width, planes.height, path.name,
-                         lambda ds: add_planes_layer(ds, planes, layer_id=lid, label=lbl))
+                         lambda ds: add_planes_layer(ds, planes, layer_id=lid, label=lbl,
+                                                     plane_format=plane_format))
     if not path.is_file():
         if path.exists():
             raise LanternaInputError(path, "is not a regular file (a device, FIFO or socket)")
@@ -66,12 +74,14 @@ def plan_source(path: Path, *, layer_id: str | None = None, label: str | None = 
         ptm = read_ptm(path)
         lbl = label or f"{path.stem} (PTM {ptm.colorspace.upper()})"
         return LayerPlan(lid, lbl, ptm.width, ptm.height, path.name,
-                         lambda ds: add_ptm_layer(ds, ptm, layer_id=lid, label=lbl))
+                         lambda ds: add_ptm_layer(ds, ptm, layer_id=lid, label=lbl,
+                                                  plane_format=plane_format))
     if suffix == ".rti":
         hsh = read_rti(path)
         lbl = label or f"{path.stem} (HSH {hsh.terms} terms)"
         return LayerPlan(lid, lbl, hsh.width, hsh.height, path.name,
-                         lambda ds: add_hsh_layer(ds, hsh, layer_id=lid, label=lbl))
+                         lambda ds: add_hsh_layer(ds, hsh, layer_id=lid, label=lbl,
+                                                  plane_format=plane_format))
     if suffix in IMAGE_SUFFIXES:
         img = load_rgb_image(path)
         lbl = label or path.stem
@@ -84,7 +94,8 @@ def plan_source(path: Path, *, layer_id: str | None = None, label: str | None = 
 
 def plan_svbrdf(maps: dict[str, Path], *, layer_id: str, label: str | None = None,
                 gloss_limits: tuple[float, float] = (0.01, 0.5), input_colorspace: str = "linear",
-                normal_convention: str = "opengl") -> LayerPlan:
+                normal_convention: str = "opengl",
+                plane_format: PlaneFormat = AUTO) -> LayerPlan:
     """Plan a shape + material layer from map files (any subset of :data:`SVBRDF_MAPS`)."""
     unknown = sorted(set(maps) - set(SVBRDF_MAPS))
     if unknown:
@@ -110,6 +121,7 @@ def plan_svbrdf(maps: dict[str, Path], *, layer_id: str, label: str | None = Non
             raise LanternaInputError(maps[name], f"map {name} is {size[0]}x{size[1]}, map {first} "
                                      f"is {sizes[first][0]}x{sizes[first][1]}")
     share = {name: str(Path(p).resolve()) for name, p in maps.items()}
+    lossy = frozenset(name for name, p in maps.items() if is_lossy_file(p))
     kind = "shape + material" if "normals" in data and "kd" in data else (
         "shape" if "normals" in data else "material")
     lbl = label or f"{layer_id} ({kind})"
@@ -121,7 +133,8 @@ def plan_svbrdf(maps: dict[str, Path], *, layer_id: str, label: str | None = Non
                                 depth=data.get("depth"), depth_range=depth_range,
                                 gloss_limits=gloss_limits,
                                 input_colorspace=input_colorspace, share=share,
-                                layer_id=layer_id, label=lbl)
+                                lossy=lossy, layer_id=layer_id, label=lbl,
+                                plane_format=plane_format)
 
     return LayerPlan(layer_id, lbl, w, h, ", ".join(str(p) for p in maps.values()), add)
 

@@ -7,6 +7,8 @@
 - :func:`load_scalar_map`, :func:`load_band`: gloss maps, 8-bit depth maps and multispectral
   bands as one grey channel.
 - :func:`load_depth_map`: depth (also float) stretched min..max to 0–255, with the range returned.
+- :func:`is_lossy_file`: whether a map's file is a lossy (JPEG) encoding, which lets its planes
+  be stored lossy within a bound (``--plane-format auto``).
 
 16-bit samples become 8-bit by rounding ``v·255/65535``. Alpha is dropped. Pixel values are
 taken as stored: no ICC or colour-space conversion. Files are decoded from memory with libvips
@@ -27,6 +29,8 @@ from lanterna.tiler.fileio import read_input
 from lanterna.tiler.limits import check_pixels
 
 NORMAL_CONVENTIONS = ("opengl", "directx")
+#: File suffixes of lossy encodings (a WebP may be either, so it counts as lossless).
+LOSSY_SUFFIXES = (".jpg", ".jpeg")
 _DTYPES = {"uchar": np.uint8, "ushort": np.uint16, "float": np.float32, "double": np.float64}
 #: A decoded normal counts as plausible when its length is within this range.
 _UNIT_RANGE = (0.6, 1.4)
@@ -35,6 +39,11 @@ _UNIT_RANGE = (0.6, 1.4)
 _KEEP_8BIT = 0.01
 #: Shorter decoded vectors carry no direction (8-bit grey 128 is 0.0068 long); they become flat.
 _SHORT = 0.05
+
+
+def is_lossy_file(path: str | Path) -> bool:
+    """True when ``path`` is a JPEG file (by its suffix): its pixels are a lossy decode."""
+    return Path(path).suffix.lower() in LOSSY_SUFFIXES
 
 
 def _read(path: str | Path, *, allow_float: bool = False) -> npt.NDArray[np.generic]:

@@ -69,7 +69,8 @@ def test_exported_tree_renders_like_numpy(tmp_path: Path, viewer_origin: str) ->
         assert expected.std() > 10  # the light changes the picture: not a constant image
     # everything came from the static hosts: the manifest and tiles from the exported tree
     assert "/pub/obj/manifest.json" in data_requests
-    assert any(r.startswith("/pub/obj/iiif/ptm_c0/") and r.endswith("/default.png")
+    ext = layer["planes"][0]["format"]
+    assert any(r.startswith("/pub/obj/iiif/ptm_c0/") and r.endswith(f"/default.{ext}")
                for r in data_requests)
     if viewer_origin == "other":
         assert any(r.startswith("/?manifest=") for r in viewer_requests)

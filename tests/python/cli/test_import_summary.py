@@ -56,6 +56,17 @@ def test_summary_without_tiffs_or_overlays_has_a_line_per_layer() -> None:
     assert lines[1].split() == ["hsh", "HSH", "9", "terms", "640×480", "9", "images"]
 
 
+def test_summary_shows_each_layers_plane_formats() -> None:
+    planes = [{"channels": ["R0", "G0", "B0"], "format": f,
+               "service": {"id": f"http://h/d/iiif/hsh_t{k}"}}
+              for k, f in enumerate(["webp", "jpg", "webp"])]
+    desc = {**DESC, "images": {"hsh_t0": {"quality": 60}, "hsh_t1": {"quality": 85},
+                               "hsh_t2": {"quality": 60}},
+            "layers": [{"id": "hsh", "label": "H", "service": {
+                "layerType": "hsh", "terms": 3, "width": 640, "height": 480, "planes": planes}}]}
+    assert summary(desc)[1].split()[-3:] == ["3", "images", "jpg:85+webp:near60"]
+
+
 def test_import_prints_the_summary_and_the_next_command(
         tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
     src = tmp_path / "small.ptm"
@@ -65,6 +76,8 @@ def test_import_prints_the_summary_and_the_next_command(
     lines = capsys.readouterr().out.splitlines()
     assert lines[0] == f'wrote {out}: dataset small "small", 120×80, 1 layer:'
     assert lines[1].split()[:4] == ["small", "PTM", "LRGB", "120×80"]
+    assert lines[1].split()[4:6] == ["3", "images"]
+    assert lines[1].split()[6] in ("png", "webp", "png+webp")  # the plane formats auto chose
     assert lines[2].startswith("  4 pyramidal TIFFs in tiff/")
     assert lines[3].startswith(f"next: lanterna serve '{tmp_path / 'my datasets'}' ")
     assert len(lines) == 4

@@ -7,23 +7,22 @@ from pathlib import Path
 
 import numpy as np
 import pytest
-import pyvips
 
 from lanterna.errors import LanternaInputError
 from lanterna.tiler.fit.run import fit_collection
 from tests.python.fixtures.photos import BAND, tall_lights, write_tall_stack
+from tests.python.fixtures.stored import stored_format, stored_plane
 
 pytest.importorskip("dask.distributed", reason="needs dask[distributed] (the dev extras)")
 
 
 def _planes(ds: Path) -> dict[str, bytes]:
+    """Every lossless image's pixels (the planes; previews are JPEG)."""
     out = {}
     for info in sorted((ds / "iiif").glob("*/info.json")):
         name = info.parent.name
-        full = info.parent / "full" / "max" / "0" / "default.png"
-        if full.is_file():
-            img = pyvips.Image.new_from_file(str(full))
-            out[name] = bytes(img.write_to_memory())
+        if stored_format(ds, name) in ("png", "webp"):
+            out[name] = stored_plane(ds, name).tobytes()
     return out
 
 

@@ -25,6 +25,7 @@ from tests.python.fixtures.photos import (
     spiral_lights,
     write_collection,
 )
+from tests.python.fixtures.stored import stored_format, stored_plane
 
 H, W = 24, 32
 
@@ -47,8 +48,8 @@ def bands(tmp_path_factory: pytest.TempPathFactory) -> dict[str, Path]:
 
 
 def _plane(ds: Path, image: str) -> npt.NDArray[np.uint8]:
-    img = pyvips.Image.new_from_file(str(ds / "iiif" / image / "full/max/0/default.png"))
-    return np.asarray(img.numpy(), np.uint8).reshape(img.height, img.width, img.bands)
+    assert stored_format(ds, image) in ("png", "webp")  # fitted planes: a lossless source
+    return stored_plane(ds, image)
 
 
 def test_bands_and_fusion_layers(bands: dict[str, Path], tmp_path: Path,
@@ -173,3 +174,18 @@ def test_progress_lines() -> None:
     assert 5 <= len(lines) <= 12  # one per 10 % step in a log, not one per update
     assert lines[-1].startswith("  fitting ptm") and "100.0% 200/200 rows" in lines[-1]
     assert "[########################]" in lines[-1]
+
+
+def test_plane_format_flag_of_fit(bands: dict[str, Path], tmp_path: Path,
+                                  capsys: pytest.CaptureFixture[str]) -> None:
+    lp = bands["R"]
+    argv = ["fit", str(lp.parent), "--lp", str(lp), "--model", "ptm", "--model", "normals"]
+    assert main([*argv, "-o", str(tmp_path / "j"), "--plane-format", "jpg:70"]) == 0
+    desc = json.loads((tmp_path / "j/lanterna.json").read_text())
+    planes = [p for layer in desc["layers"] for p in layer["service"]["planes"]]
+    assert len(planes) == 8 and {p["format"] for p in planes} == {"jpg"}  # RGB PTM, normals + kd
+    assert {desc["images"][p["service"]["id"].rsplit("/", 1)[1]]["quality"] for p in planes} \
+        == {70}
+    assert main([*argv, "-o", str(tmp_path / "bad"), "--plane-format", "tiff"]) == 2
+    assert "--plane-format wants auto, png, webp or jpg[:Q]" in capsys.readouterr().err
+    assert not (tmp_path / "bad").exists()

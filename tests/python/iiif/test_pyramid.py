@@ -10,6 +10,7 @@ import pytest
 import pyvips
 
 from lanterna.tiler.iiif import geometry as geo
+from lanterna.tiler.iiif.encoding import TileFormat
 from lanterna.tiler.iiif.pyramid import vips_from_array, write_pyramid
 
 
@@ -18,7 +19,7 @@ def _image(w: int, h: int, seed: int = 0) -> np.ndarray:
 
 
 @pytest.mark.parametrize(("w", "h"), [(200, 150), (256, 256), (300, 1000), (1001, 777), (513, 2)])
-@pytest.mark.parametrize("fmt", ["png", "jpg"])
+@pytest.mark.parametrize("fmt", ["png", "jpg", "webp"])
 def test_every_tile_openseadragon_or_the_spec_asks_for_exists(tmp_path: Path, w: int, h: int,
                                                               fmt: str) -> None:
     out = tmp_path / "img"
@@ -52,6 +53,35 @@ def test_info_json_fixes_dzsave_gaps(tmp_path: Path) -> None:
     assert "maxWidth" not in info
     jpg = write_pyramid(vips_from_array(_image(64, 64)), tmp_path / "b", "http://h/p/b", fmt="jpg")
     assert "preferredFormats" not in jpg and "extraFormats" not in jpg
+    webp = write_pyramid(vips_from_array(_image(64, 64)), tmp_path / "c", "http://h/p/c",
+                         fmt=TileFormat("webp", 60))
+    assert webp["preferredFormats"] == ["webp"] and webp["extraFormats"] == ["webp"]
+
+
+def test_webp_tiles_are_lossless_and_near_lossless_within_its_level(tmp_path: Path) -> None:
+    img = _image(600, 300, seed=3)
+    smooth = np.repeat(np.repeat(img[::8, ::8], 8, 0), 8, 1)[:300, :600]  # near-lossless acts
+    write_pyramid(vips_from_array(img), tmp_path / "w", "http://h/w", fmt="webp")
+    write_pyramid(vips_from_array(smooth), tmp_path / "n", "http://h/n", fmt=TileFormat("webp", 40))
+    tile = "256,0,256,256/256,256/0/default.webp"
+    exact = pyvips.Image.new_from_file(str(tmp_path / "w" / tile)).numpy()
+    np.testing.assert_array_equal(exact, img[0:256, 256:512])
+    near = pyvips.Image.new_from_file(str(tmp_path / "n" / tile)).numpy().astype(int)
+    err = np.abs(near - smooth[0:256, 256:512])
+    assert 0 < err.max() <= 8  # lossy, by at most libwebp's level-40 step
+
+
+def test_jpg_quality_is_the_one_asked_for_and_4_4_4(tmp_path: Path) -> None:
+    img = _image(256, 256, seed=5)
+    sizes = {}
+    for q in (50, 95):
+        write_pyramid(vips_from_array(img), tmp_path / f"q{q}", "http://h/q",
+                      fmt=TileFormat("jpg", q))
+        tile = tmp_path / f"q{q}/full/max/0/default.jpg"
+        sizes[q] = tile.stat().st_size
+        # libvips reads back the chroma subsampling: none (4:4:4) at any quality
+        assert pyvips.Image.new_from_file(str(tile)).get("jpeg-chroma-subsample") == "4:4:4"
+    assert sizes[50] < sizes[95] / 1.5
 
 
 def test_png_tiles_are_lossless_at_full_resolution(tmp_path: Path) -> None:

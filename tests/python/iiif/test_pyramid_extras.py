@@ -10,6 +10,7 @@ import pyvips
 
 from lanterna.tiler.iiif import geometry as geo
 from lanterna.tiler.iiif import pyramid
+from lanterna.tiler.iiif.encoding import TileFormat
 from lanterna.tiler.iiif.pyramid import FULL_MAX_LIMIT, vips_from_array, write_pyramid
 
 
@@ -38,24 +39,26 @@ def test_sizes_are_the_level_tiles_joined(tmp_path: Path, w: int, h: int) -> Non
                                       level)
 
 
-def test_full_max_is_the_whole_image_in_both_formats(tmp_path: Path) -> None:
+@pytest.mark.parametrize("fmt", ["png", "webp"])
+def test_full_max_is_the_whole_image_in_both_formats(tmp_path: Path, fmt: str) -> None:
     img = _image(700, 500)
-    write_pyramid(vips_from_array(img), tmp_path / "p", "http://h/p", fmt="png")
-    np.testing.assert_array_equal(_pixels(tmp_path / "p/full/max/0/default.png"), img)
+    write_pyramid(vips_from_array(img), tmp_path / "p", "http://h/p", fmt=fmt)
+    np.testing.assert_array_equal(_pixels(tmp_path / f"p/full/max/0/default.{fmt}"), img)
     jpg = _pixels(tmp_path / "p/full/max/0/default.jpg")
     assert jpg.shape == img.shape
     # the size entry equal to the whole image is the same file as full/max
-    assert (tmp_path / "p/full/700,500/0/default.png").samefile(
-        tmp_path / "p/full/max/0/default.png")
+    assert (tmp_path / f"p/full/700,500/0/default.{fmt}").samefile(
+        tmp_path / f"p/full/max/0/default.{fmt}")
 
 
 def test_a_failed_full_max_leaves_nothing(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
     real_render = pyramid._render
 
-    def failing(image: pyvips.Image, req: geo.TileRequest, target: Path) -> None:
+    def failing(image: pyvips.Image, req: geo.TileRequest, target: Path,
+                fmt: TileFormat) -> None:
         if target.name.startswith("full-max"):
             raise OSError("disk full")
-        real_render(image, req, target)
+        real_render(image, req, target, fmt)
 
     monkeypatch.setattr(pyramid, "_render", failing)
     with pytest.raises(OSError, match="disk full"):
@@ -63,7 +66,7 @@ def test_a_failed_full_max_leaves_nothing(tmp_path: Path, monkeypatch: pytest.Mo
     assert list(tmp_path.iterdir()) == []  # no output, no scratch folder
 
 
-@pytest.mark.parametrize("fmt", ["jpg", "png"])
+@pytest.mark.parametrize("fmt", ["jpg", "png", "webp"])
 def test_full_max_of_a_large_image_is_its_first_level_within_the_limit(tmp_path: Path,
                                                                        fmt: str) -> None:
     """Past FULL_MAX_LIMIT, ``max`` is a reduced pyramid level, declared by maxWidth/maxHeight."""
@@ -77,8 +80,8 @@ def test_full_max_of_a_large_image_is_its_first_level_within_the_limit(tmp_path:
     for ext in sorted({"jpg", fmt}):
         full = _pixels(tmp_path / f"p/full/max/0/default.{ext}")
         assert full.shape == (mh, mw, 3), ext
-    if fmt == "png":  # the level's own tiles, losslessly: equal to the 4x4 block values
-        np.testing.assert_array_equal(_pixels(tmp_path / "p/full/max/0/default.png"),
+    if fmt != "jpg":  # the level's own tiles, losslessly: equal to the 4x4 block values
+        np.testing.assert_array_equal(_pixels(tmp_path / f"p/full/max/0/default.{fmt}"),
                                       img[::4, ::4][:mh, :mw])
     # every tile a client asks for is still there
     assert (tmp_path / f"p/0,0,256,256/256,256/0/default.{fmt}").is_file()

@@ -12,8 +12,9 @@ import pyvips
 from lanterna.cli import main
 from lanterna.tiler.dataset.layers import add_image_layer, add_ptm_layer
 from lanterna.tiler.dataset.writer import DatasetWriter
+from lanterna.tiler.iiif.encoding import TileFormat
 from lanterna.tiler.iiif.pyramid import vips_from_array
-from lanterna.tiler.iiif.tiff import write_tiff
+from lanterna.tiler.iiif.tiff import tiff_options, write_tiff
 from tests.python.fixtures.ptm import random_ptm_of_size
 from tests.python.fixtures.ptm_writer import write_ptm
 
@@ -43,6 +44,15 @@ def test_jpg_type_tiff_is_close(tmp_path: Path) -> None:
     assert 0 < err < 3  # lossy, but Q90
 
 
+def test_tiff_options_follow_the_tile_format() -> None:
+    """WebP trees' TIFFs are lossless deflate (what every TIFF reader reads); JPEG keeps its Q."""
+    assert tiff_options("webp")["compression"] == "deflate"
+    assert tiff_options(TileFormat("webp", 60))["compression"] == "deflate"
+    assert tiff_options("jpg")["Q"] == 90
+    assert tiff_options(TileFormat("jpg", 75)) | {"Q": 0} == tiff_options("jpg") | {"Q": 0}
+    assert tiff_options(TileFormat("jpg", 75))["Q"] == 75
+
+
 def test_failed_write_leaves_no_file(tmp_path: Path) -> None:
     with pytest.raises(ValueError):
         write_tiff(vips_from_array(np.zeros((4, 4, 3), np.uint8)), tmp_path / "c.tif", fmt="gif")
@@ -63,12 +73,15 @@ def test_dataset_writer_writes_and_records_one_tiff_per_image(tmp_path: Path) ->
     assert "photo.tif" in tiffs and "photo2.tif" not in tiffs
     for ident, image in desc["images"].items():
         assert image["tiff"] == f"tiff/{ident}.tif"
-    # The coefficient planes are stored bit for bit: same pixels as the PNG pyramid's full/max.
+    # The coefficient planes are stored bit for bit: same pixels as the lossless pyramid's
+    # full/max (PNG or lossless WebP, whichever --plane-format auto found smaller).
     for ident in ("ptm_c0", "ptm_c1"):
-        png = pyvips.Image.new_from_file(
-            str(tmp_path / f"obj/iiif/{ident}/full/max/0/default.png")).numpy()
+        ext = desc["images"][ident]["format"]
+        assert ext in ("png", "webp") and "quality" not in desc["images"][ident]
+        tree = pyvips.Image.new_from_file(
+            str(tmp_path / f"obj/iiif/{ident}/full/max/0/default.{ext}")).numpy()
         tif = pyvips.Image.new_from_file(str(tmp_path / f"obj/tiff/{ident}.tif")).numpy()
-        assert np.array_equal(png, tif)
+        assert np.array_equal(tree, tif)
 
 
 def test_dataset_without_tiff_flag_has_none(tmp_path: Path) -> None:

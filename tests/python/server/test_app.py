@@ -10,7 +10,9 @@ from flask.testing import FlaskClient
 
 from lanterna.server.app import create_app
 from lanterna.tiler.dataset.layers import add_ptm_layer
+from lanterna.tiler.dataset.plane_format import PlaneFormat
 from lanterna.tiler.dataset.writer import DatasetWriter
+from lanterna.tiler.iiif.encoding import TileFormat
 from tests.python.fixtures.ptm import random_ptm_of_size
 
 
@@ -20,7 +22,7 @@ def root(tmp_path_factory: pytest.TempPathFactory) -> Path:
     ptm = random_ptm_of_size(300, 200)
     with DatasetWriter(root / "obj", name="obj", label="Object", width=300, height=200,
                        base_url="https://example.org/pub") as ds:
-        add_ptm_layer(ds, ptm)
+        add_ptm_layer(ds, ptm, plane_format=PlaneFormat(TileFormat("png")))  # PNG tiles below
     (root.parent / "secret.json").write_text('{"secret": 1}')
     return root
 
