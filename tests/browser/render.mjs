@@ -27,12 +27,17 @@
 //   "mobile": true  a phone-like context (hasTouch, isMobile)
 //   "tileTimeoutMs": 3000  OpenSeadragon's tile time limit from then on (viewer.imageLoader.timeout)
 //   "launchArgs": ["--flag", …]  extra Chromium flags
+//   "minPixelRatio": 0.75  OpenSeadragon's minPixelRatio, passed to the page as ?minPixelRatio= (a
+//       test-only knob: 0.75 unless given, so that a zoom of 1/2 shows exactly the next coarser level;
+//       null: the page's own full detail)
 // More shot keys: "contextLoss": true (after the frame is read: lose the WebGL context, check the
 // page while lost, restore it, wait until loaded and read the frame again into `out + ".restored"`),
 // "screenshot" (a PNG after the shot), "lostScreenshot" (a PNG while the context is lost), "read"
 // (CSS selectors of form controls whose values go to the shot's JSON as `values`). The shot's
 // JSON also holds `notices` (the notice box: visible, rect, texts, and lanterna.getNotices()),
-// `routeHits` (requests caught by each route so far) and, with contextLoss, `noticesWhileLost`.
+// `routeHits` (requests caught by each route so far), `frames` (since the page opened: animation frames
+// `ticks`, relit frames `rendered` (the drawer's getFrameCount) and `maxPerTick`, the most relit frames
+// between two animation frames) and, with contextLoss, `noticesWhileLost`.
 //
 // Gesture steps: see page-actions.mjs (touch, mouse, pen, wheel, click, wait).
 import { readFileSync, writeFileSync } from 'node:fs';
@@ -116,6 +121,7 @@ function readFrame(page) {
       overlayState: l.getOverlayState?.() ?? null, lens: l.getLens?.() ?? null, light: l.getLight(),
       view: { center: [center.x, center.y], zoom: l.viewer.viewport.getZoom(true) },
       hypertext: document.querySelector('.lanterna-hypertext-short')?.textContent ?? null,
+      frames: { ...window.__lanternaFrames },
     };
   });
 }
@@ -196,7 +202,23 @@ async function main() {
         }));
       }
     };
-    await withTimeout(page.goto(spec.url, { waitUntil: 'load' }), timeoutMs, `loading ${spec.url}`);
+    // Count animation frames and the drawer's relit frames between them, from the page's start.
+    await page.addInitScript(() => {
+      const counts = { ticks: 0, rendered: 0, maxPerTick: 0 };
+      window.__lanternaFrames = counts;
+      const tick = () => {
+        const rendered = window.lanterna?.viewer?.drawer?.getFrameCount?.() ?? 0;
+        counts.maxPerTick = Math.max(counts.maxPerTick, rendered - counts.rendered);
+        counts.rendered = rendered;
+        counts.ticks++;
+        requestAnimationFrame(tick);
+      };
+      requestAnimationFrame(tick);
+    });
+    const minPixelRatio = spec.minPixelRatio === undefined ? 0.75 : spec.minPixelRatio;
+    const url = minPixelRatio === null ? spec.url
+      : `${spec.url}${spec.url.includes('?') ? '&' : '?'}minPixelRatio=${minPixelRatio}`;
+    await withTimeout(page.goto(url, { waitUntil: 'load' }), timeoutMs, `loading ${spec.url}`);
     if (spec.expectReady === 'reject') {
       const opened = await withTimeout(readOpenError(page), timeoutMs, 'waiting for the error message');
       // Give late errors (unhandled rejections, errors in handlers) a moment to show up.
@@ -270,7 +292,7 @@ async function main() {
       writeFileSync(`${shot.out}.json`, JSON.stringify({
         width: result.width, height: result.height, overlayState: result.overlayState, lens: result.lens,
         light: result.light, view: result.view, hypertext: result.hypertext, requests, notices,
-        routeHits: [...routeHits], values, ...extra,
+        routeHits: [...routeHits], values, frames: result.frames, ...extra,
       }));
       process.stdout.write(`${JSON.stringify({
         out: shot.out, width: result.width, height: result.height, light: shot.light, region: shot.region,
