@@ -12,6 +12,7 @@ export interface ItemLike {
   getOpacity(): number;
   getRotation(current?: boolean): number;
   getBoundsNoRotate(current?: boolean): OpenSeadragon.Rect;
+  getFlip(): boolean;
 }
 
 const IDENTITY: Mat3 = [1, 0, 0, 0, 1, 0, 0, 0, 1];
@@ -25,14 +26,14 @@ export function itemRotation(item: ItemLike): Mat3 {
 /**
  * Everything but the tiles that makes a frame's picture: the canvas size, the settings' version
  * (light, mode, parameters, lens, roles: bumped by the drawer's setters), the view matrix, and each
- * item with its opacity, rotation and bounds.
+ * item with its opacity, rotation, flip and bounds.
  */
 export function sceneKey(canvas: { width: number; height: number }, settings: number, view: Mat3,
   items: readonly ItemLike[]): unknown[] {
   const key: unknown[] = [canvas.width, canvas.height, settings, ...view];
   for (const item of items) {
     const b = item.getBoundsNoRotate(true);
-    key.push(item, item.getOpacity(), item.getRotation(true), b.x, b.y, b.width, b.height);
+    key.push(item, item.getOpacity(), item.getRotation(true), item.getFlip(), b.x, b.y, b.width, b.height);
   }
   return key;
 }
