@@ -30,12 +30,17 @@
 //   "mobile": true  a phone-like context (hasTouch, isMobile)
 //   "tileTimeoutMs": 3000  OpenSeadragon's tile time limit from then on (viewer.imageLoader.timeout)
 //   "launchArgs": ["--flag", …]  extra Chromium flags
+//   "minPixelRatio": 0.75  OpenSeadragon's minPixelRatio, passed to the page as ?minPixelRatio= (a
+//       test-only knob: 0.75 unless given, so that a zoom of 1/2 shows exactly the next coarser level;
+//       null: the page's own full detail)
 // More shot keys: "contextLoss": true (after the frame is read: lose the WebGL context, check the
 // page while lost, restore it, wait until loaded and read the frame again into `out + ".restored"`),
 // "screenshot" (a PNG after the shot), "lostScreenshot" (a PNG while the context is lost), "read"
 // (CSS selectors of form controls whose values go to the shot's JSON as `values`). The shot's
 // JSON also holds `notices` (the notice box: visible, rect, texts, and lanterna.getNotices()),
-// `routeHits` (requests caught by each route so far) and, with contextLoss, `noticesWhileLost`.
+// `routeHits` (requests caught by each route so far), `frames` (since the page opened: animation frames
+// `ticks`, relit frames `rendered` (the drawer's getFrameCount) and `maxPerTick`, the most relit frames
+// between two animation frames) and, with contextLoss, `noticesWhileLost`.
 //
 // Gesture steps: see page-actions.mjs (touch, mouse, pen, wheel, click, wait).
 import { readFileSync, writeFileSync } from 'node:fs';
@@ -119,6 +124,7 @@ function readFrame(page) {
       overlayState: l.getOverlayState?.() ?? null, lens: l.getLens?.() ?? null, light: l.getLight(),
       view: { center: [center.x, center.y], zoom: l.viewer.viewport.getZoom(true) },
       hypertext: document.querySelector('.lanterna-hypertext-short')?.textContent ?? null,
+      frames: { ...window.__lanternaFrames },
     };
   });
 }
@@ -200,8 +206,28 @@ async function main() {
         }));
       }
     };
-    const url = new URL(spec.url).searchParams.has('wholeLevelMaxSide') ? spec.url
-      : `${spec.url}${spec.url.includes('?') ? '&' : '?'}wholeLevelMaxSide=0`;
+    // Count animation frames and the drawer's relit frames between them, from the page's start.
+    await page.addInitScript(() => {
+      const counts = { ticks: 0, rendered: 0, maxPerTick: 0 };
+      window.__lanternaFrames = counts;
+      const tick = () => {
+        const rendered = window.lanterna?.viewer?.drawer?.getFrameCount?.() ?? 0;
+        counts.maxPerTick = Math.max(counts.maxPerTick, rendered - counts.rendered);
+        counts.rendered = rendered;
+        counts.ticks++;
+        requestAnimationFrame(tick);
+      };
+      requestAnimationFrame(tick);
+    });
+    const minPixelRatio = spec.minPixelRatio === undefined ? 0.75 : spec.minPixelRatio;
+    const extra = [];
+    if (minPixelRatio !== null) {
+      extra.push(`minPixelRatio=${minPixelRatio}`);
+    }
+    if (!new URL(spec.url).searchParams.has('wholeLevelMaxSide')) {
+      extra.push('wholeLevelMaxSide=0');
+    }
+    const url = extra.length === 0 ? spec.url : `${spec.url}${spec.url.includes('?') ? '&' : '?'}${extra.join('&')}`;
     await withTimeout(page.goto(url, { waitUntil: 'load' }), timeoutMs, `loading ${url}`);
     if (spec.expectReady === 'reject') {
       const opened = await withTimeout(readOpenError(page), timeoutMs, 'waiting for the error message');
@@ -276,7 +302,7 @@ async function main() {
       writeFileSync(`${shot.out}.json`, JSON.stringify({
         width: result.width, height: result.height, overlayState: result.overlayState, lens: result.lens,
         light: result.light, view: result.view, hypertext: result.hypertext, requests, notices,
-        routeHits: [...routeHits], values, ...extra,
+        routeHits: [...routeHits], values, frames: result.frames, ...extra,
       }));
       process.stdout.write(`${JSON.stringify({
         out: shot.out, width: result.width, height: result.height, light: shot.light, region: shot.region,

@@ -1,6 +1,7 @@
 /**
  * The viewer page: `index.html?manifest=URL[&layer=ID][&mode=MODE][&wholeLevelMaxSide=PX]`. Exposes the viewer as
- * `window.lanterna`. A dataset that cannot be opened gives a message in the page (`#error`); errors
+ * `window.lanterna`. Test-only: `&minPixelRatio=R` sets OpenSeadragon's `minPixelRatio` (the page
+ * shows full detail otherwise; the browser tests pass 0.75 to get exact levels, tests/browser/render.mjs). A dataset that cannot be opened gives a message in the page (`#error`); errors
  * after that (switching layers, the lens) show as notices over the viewer.
  */
 import { createControls, createLensControls, createViewer, type LanternaViewer, type RenderMode } from '../index';
@@ -33,10 +34,14 @@ function showFatal(error: unknown, manifestUrl: string | null): void {
 }
 
 /** Open the viewer on `manifest` and wire the page's controls to it. */
-function open(manifest: string, layer: string | undefined, mode: string | null, wholeLevelMaxSide?: number): void {
+function open(manifest: string, layer: string | undefined, mode: string | null, wholeLevelMaxSide: number | undefined,
+  minPixelRatio: number | null): void {
   let lanterna: LanternaViewer;
   try {
-    lanterna = createViewer({ element: 'viewer', manifest, layer, wholeLevelMaxSide });
+    lanterna = createViewer({
+      element: 'viewer', manifest, layer, wholeLevelMaxSide,
+      ...(minPixelRatio === null ? {} : { osd: { minPixelRatio } }),
+    });
   } catch (error) {
     showFatal(error, manifest); // e.g. no WebGL2
     return;
@@ -118,6 +123,8 @@ if (!manifestParam) {
   }
   if (manifest !== null) {
     const side = Number(params.get('wholeLevelMaxSide') ?? Number.NaN);
-    open(manifest, params.get('layer') ?? undefined, params.get('mode'), Number.isFinite(side) ? side : undefined);
+    const ratio = Number(params.get('minPixelRatio') ?? Number.NaN);
+    open(manifest, params.get('layer') ?? undefined, params.get('mode'), Number.isFinite(side) ? side : undefined,
+      Number.isFinite(ratio) && ratio > 0 ? ratio : null);
   }
 }

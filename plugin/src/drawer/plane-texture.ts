@@ -41,6 +41,21 @@ export function currentTexture(gl: WebGL2RenderingContext, tile: TileTexture, ge
   return tile.texture;
 }
 
+/** The tile's texture if it was uploaded (or failed) in context generation `generation`; never uploads. */
+export function uploadedTexture(gl: WebGL2RenderingContext, tile: TileTexture, generation: number): WebGLTexture | null {
+  return tile.generation === generation && !gl.isContextLost() ? tile.texture : null;
+}
+
+/** True while the tile waits for its upload in context generation `generation`. */
+export function uploadPending(tile: TileTexture, generation: number): boolean {
+  return tile.generation !== generation;
+}
+
+/** Bytes of the tile's texture (RGBA8, every plane). */
+export function textureBytes(tile: TileTexture): number {
+  return tile.bundle.width * tile.bundle.height * 4 * tile.bundle.bitmaps.length;
+}
+
 /** Delete the tile's texture if it belongs to the current, live context. */
 export function freeTileTexture(gl: WebGL2RenderingContext, tile: TileTexture, generation: number): void {
   if (tile.texture && tile.generation === generation && !gl.isContextLost()) {

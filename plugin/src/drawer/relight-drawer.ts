@@ -17,15 +17,18 @@ import { resolveLayer, type ResolvedLayer } from '../layers/resolved-layer';
 import type { AnnotationDisplay } from '../lens/lens-state';
 import { lensInDevicePixels } from '../math/lens';
 import { OVERHEAD_LIGHT, type Light } from '../math/light';
-import { modelMatrix, multiply, rotationAbout, viewMatrix, type Mat3 } from '../math/matrix';
+import { modelMatrix, multiply, viewMatrix, type Mat3 } from '../math/matrix';
 import { DEFAULT_RENDER_MODE, type RenderMode } from '../render/modes';
 import { DEFAULT_RENDER_PARAMS, type RenderParams } from '../render/params';
 import { BUNDLE_DATA_TYPE, type PlaneBundle } from '../tiles/bundle';
 import type { Compositor, DrawerLens } from './compositor';
-import { FrameRenderer, type FrameItem, type FrameLayer } from './frame-renderer';
+import { FrameRenderer } from './frame-renderer';
 import type { TileQuad } from './layer-pass';
-import { currentTexture, freeTileTexture, type TileTexture } from './plane-texture';
+import { freeTileTexture, uploadedTexture, type TileTexture } from './plane-texture';
 import { ContextWatch } from './context-watch';
+import { FrameScheduler } from './frame-scheduler';
+import { sceneKey, sortItems, type ItemLike } from './frame-items';
+import { prepareFrameTiles, type FrameEntry } from './frame-tiles';
 import { readCanvasPixels, type PixelData } from './read-pixels';
 
 export type { PixelData } from './read-pixels';
@@ -49,12 +52,12 @@ interface TileLike {
   positionedBounds: OpenSeadragon.Rect;
   sourceBounds?: OpenSeadragon.Rect;
   flipped?: boolean;
+  /** Squared distance of the tile's centre from the view's centre (set by OSD each update). */
+  squaredDistance?: number | null;
 }
-interface TiledImageLike {
+interface TiledImageLike extends ItemLike {
   getTilesToDraw(): { tile: TileLike }[];
-  getOpacity(): number;
-  getRotation(current?: boolean): number;
-  getBoundsNoRotate(current?: boolean): OpenSeadragon.Rect;
+  getFullyLoaded(): boolean;
 }
 
 const CONTEXT_ATTRIBUTES: WebGLContextAttributes = {
@@ -83,7 +86,10 @@ export class RelightDrawer extends OpenSeadragon.DrawerBase implements Composito
   declare private overlayDisplay: AnnotationDisplay;
   declare private light: Light;
   declare private smoothing: boolean;
-  declare private lastFrame: { item: TiledImageLike; tiles: TileLike[] }[];
+  declare private lastFrame: FrameEntry<TiledImageLike, TileLike>[];
+  declare private scheduler: FrameScheduler;
+  /** Bumped by every setting that changes the picture (light, mode, lens...): part of the frame key. */
+  declare private settings: number;
   declare private destroyed: boolean;
   declare private context: ContextWatch;
   declare private events: DrawerEvents | null;
@@ -109,6 +115,8 @@ export class RelightDrawer extends OpenSeadragon.DrawerBase implements Composito
     }
     this.gl = gl;
     this.frames = new FrameRenderer(gl);
+    this.settings = 0;
+    this.scheduler = new FrameScheduler(gl, () => { this.viewer.forceRedraw(); });
     this.events = null;
     this.reported = new Set();
     this.context = new ContextWatch(this.canvas, gl, {
@@ -118,6 +126,7 @@ export class RelightDrawer extends OpenSeadragon.DrawerBase implements Composito
         // the next frame make them again (tile textures from their bundles, see currentTexture).
         this.frames?.forget();
         this.frames = new FrameRenderer(this.gl);
+        this.scheduler.reset();
         this.reported.clear();
         this.viewer.forceRedraw();
         this.events?.context(false);
@@ -163,17 +172,20 @@ export class RelightDrawer extends OpenSeadragon.DrawerBase implements Composito
   /** Declare how a TiledImage is drawn. Items without a layer are not drawn. */
   setLayer(tiledImage: object, layer: RelightLayer): void {
     this.layers.set(tiledImage, this.resolve(layer));
+    this.settings++;
   }
 
   /** Draw `tiledImage` as the lens layer: inside the lens only (see {@link RelightDrawer.setLens}). */
   setLensItem(tiledImage: object, layer: RelightLayer): void {
     this.layers.set(tiledImage, this.resolve(layer));
     this.roles.set(tiledImage, 'lens');
+    this.settings++;
   }
 
   /** Draw `tiledImage` (a one-plane bundle of RGBA with straight alpha) as an annotation overlay. */
   setOverlayItem(tiledImage: object): void {
     this.roles.set(tiledImage, 'overlay');
+    this.settings++;
   }
 
   /**
@@ -182,11 +194,13 @@ export class RelightDrawer extends OpenSeadragon.DrawerBase implements Composito
    */
   setLens(lens: DrawerLens | null): void {
     this.lens = lens;
+    this.settings++;
   }
 
   /** Where overlays show relative to the lens (ignored while the lens is off). */
   setOverlayDisplay(display: AnnotationDisplay): void {
     this.overlayDisplay = display;
+    this.settings++;
   }
 
   /**
@@ -195,6 +209,7 @@ export class RelightDrawer extends OpenSeadragon.DrawerBase implements Composito
    */
   setLight(light: Light): void {
     this.light = light;
+    this.settings++;
   }
 
   /** The current light. */
@@ -208,6 +223,7 @@ export class RelightDrawer extends OpenSeadragon.DrawerBase implements Composito
    */
   setRenderMode(mode: RenderMode): void {
     this.mode = mode;
+    this.settings++;
   }
 
   /** The render mode. */
@@ -218,6 +234,7 @@ export class RelightDrawer extends OpenSeadragon.DrawerBase implements Composito
   /** Set the render parameters (already clamped). Call `viewer.forceRedraw()` afterwards. */
   setRenderParams(params: RenderParams): void {
     this.params = params;
+    this.settings++;
   }
 
   /**
@@ -235,6 +252,7 @@ export class RelightDrawer extends OpenSeadragon.DrawerBase implements Composito
 
   override setImageSmoothingEnabled(enabled: boolean): void {
     this.smoothing = enabled;
+    this.settings++;
     this.viewer.forceRedraw();
   }
 
@@ -253,30 +271,59 @@ export class RelightDrawer extends OpenSeadragon.DrawerBase implements Composito
     const texScale: [number, number] = source
       ? [Math.min(source.width, bundle.width) / bundle.width, Math.min(source.height, bundle.height) / bundle.height]
       : [1, 1];
-    const data: TileTexture = { texture: null, texScale, generation: -1, bundle };
-    currentTexture(this.gl, data, this.context.generation);
-    return data;
+    // Uploaded by the frames that draw the tile, within their budget (see frame-tiles.ts).
+    return { texture: null, texScale, generation: -1, bundle };
   }
 
   override internalCacheFree(data: TileTexture): void {
     freeTileTexture(this.gl, data, this.context.generation);
   }
 
-  /** Draw one frame (called by OpenSeadragon). Calls `getTilesToDraw()` once per item. */
+  /**
+   * Called by OpenSeadragon at most once per animation frame (its update loop); calls
+   * `getTilesToDraw()` once per item. Uploads the frame's new tile textures (within a budget
+   * unless the scene changed) and renders the relit frame only if it is due: never again for an
+   * unchanged frame, and while tiles load not more often than the GPU can afford (frame-schedule.ts).
+   */
   draw(tiledImages: object[]): void {
     this.lastFrame = (tiledImages as TiledImageLike[]).map((item) => ({
       item,
       tiles: item.getTilesToDraw().map((info) => info.tile),
     }));
-    this.render();
+    if (this.destroyed || this.gl.isContextLost() || !this.frames) {
+      return;
+    }
+    this.resizeIfNeeded();
+    const scene = sceneKey(this.canvas, this.settings, this.currentViewMatrix(), this.lastFrame.map((e) => e.item));
+    const tiles = this.prepareTiles(this.scheduler.sceneChanged(scene));
+    this.scheduler.frame({ key: { scene, tiles: tiles.key }, uploadsPending: tiles.pending, loading: tiles.loading },
+      () => { this.render(); });
+  }
+
+  /** Set how many tile bundles OpenSeadragon's tile cache keeps (its `maxImageCacheCount`). */
+  setTileCacheCount(count: number): void {
+    (this.viewer.tileCache as unknown as { _maxCacheItemCount: number })._maxCacheItemCount = count;
+  }
+
+  /** Relit frames rendered for the screen so far (read-backs not counted): for tests and benchmarks. */
+  getFrameCount(): number {
+    return this.scheduler.frames;
+  }
+
+  /** True when the screen shows the current state: no frame put off, no texture waiting for upload. */
+  isSettled(): boolean {
+    return this.scheduler.settled;
   }
 
   /**
-   * Re-render the last frame synchronously and read it back.
+   * Re-render the last frame synchronously (every texture uploaded first) and read it back.
    *
    * @returns RGBA bytes, rows top-down, at the canvas's device-pixel size
    */
   readPixels(): PixelData {
+    if (!this.destroyed && !this.gl.isContextLost()) {
+      this.prepareTiles(true);
+    }
     this.render();
     return readCanvasPixels(this.gl);
   }
@@ -287,6 +334,7 @@ export class RelightDrawer extends OpenSeadragon.DrawerBase implements Composito
     }
     this.destroyed = true;
     this.destroyInternalCache();
+    this.scheduler.destroy();
     this.frames?.destroy();
     super.destroy();
     this.context.destroy();
@@ -324,6 +372,16 @@ export class RelightDrawer extends OpenSeadragon.DrawerBase implements Composito
     return viewMatrix(bounds, rotation, this.viewport.getFlip());
   }
 
+  /** The last frame's tile textures, uploaded (all of them, or within the frame's budget). */
+  private prepareTiles(all: boolean): { key: unknown[]; pending: boolean; loading: boolean } {
+    return prepareFrameTiles(this.lastFrame, {
+      gl: this.gl,
+      generation: this.context.generation,
+      all,
+      textureOf: (tile) => this.getDataToDraw(tile as unknown as OpenSeadragon.Tile) as TileTexture | undefined,
+    });
+  }
+
   /** Describe the last frame's items to the frame renderer and draw it. */
   private render(): void {
     const gl = this.gl;
@@ -332,24 +390,8 @@ export class RelightDrawer extends OpenSeadragon.DrawerBase implements Composito
     }
     this.resizeIfNeeded();
     const view = this.currentViewMatrix();
-    const layers: FrameLayer<TileLike>[] = [];
-    let lensLayer: FrameLayer<TileLike> | null = null;
-    const overlays: FrameItem<TileLike>[] = [];
-    for (const { item, tiles } of this.lastFrame) {
-      if (item.getOpacity() === 0 || tiles.length === 0) {
-        continue;
-      }
-      const role = this.roles.get(item);
-      const layer = this.layers.get(item);
-      const matrix = multiply(view, this.itemRotation(item));
-      if (role === 'overlay') {
-        overlays.push({ tiles, matrix });
-      } else if (layer && role === 'lens') {
-        lensLayer = { tiles, matrix, layer };
-      } else if (layer) {
-        layers.push({ tiles, matrix, layer });
-      }
-    }
+    const { layers, lensLayer, overlays } = sortItems(this.lastFrame, view, (item) => this.roles.get(item),
+      (item) => this.layers.get(item));
     const lens = this.lens;
     try {
       this.frames.render({
@@ -389,7 +431,7 @@ export class RelightDrawer extends OpenSeadragon.DrawerBase implements Composito
   /** A tile's texture and placement (null while it has no texture). */
   private quadOf(tile: TileLike, itemMatrix: Mat3): TileQuad | null {
     const data = this.getDataToDraw(tile as unknown as OpenSeadragon.Tile) as TileTexture | undefined;
-    const texture = data ? currentTexture(this.gl, data, this.context.generation) : null;
+    const texture = data ? uploadedTexture(this.gl, data, this.context.generation) : null;
     if (!data || !texture) {
       return null;
     }
@@ -398,14 +440,5 @@ export class RelightDrawer extends OpenSeadragon.DrawerBase implements Composito
       matrix: multiply(itemMatrix, modelMatrix(tile.positionedBounds, tile.flipped === true)),
       texScale: data.texScale,
     };
-  }
-
-  /** The item's rotation about its centre. */
-  private itemRotation(item: TiledImageLike): Mat3 {
-    const degrees = item.getRotation(true);
-    if (degrees % 360 === 0) {
-      return [1, 0, 0, 0, 1, 0, 0, 0, 1];
-    }
-    return rotationAbout(degrees, item.getBoundsNoRotate(true).getCenter());
   }
 }

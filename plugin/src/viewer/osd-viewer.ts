@@ -1,9 +1,16 @@
 /**
  * The OpenSeadragon viewer a Lanterna viewer runs on: its options (the Lanterna drawer, no
- * navigator, level selection) and access to its drawer.
+ * navigator, level selection, the tile cache's size) and access to its drawer.
  */
 import OpenSeadragon from 'openseadragon';
 import { RelightDrawer, WebGLUnavailableError } from '../drawer/relight-drawer';
+import { cacheTileCount } from './cache-budget';
+
+/** OpenSeadragon's own `minPixelRatio`: full detail (up to 2 image px per screen px). */
+const FULL_DETAIL = 0.5;
+
+/** Planes per bundle assumed until the manifest says (a PTM: three plane groups). */
+const DEFAULT_PLANES = 3;
 
 /**
  * Create the OpenSeadragon viewer in `element`; `osd` overrides the defaults.
@@ -22,13 +29,17 @@ export function createOsdViewer(element: HTMLElement, osd?: Partial<OpenSeadrago
     showNavigationControl: false,
     blendTime: 0,
     immediateRender: false,
-    // Levels finer than needed (render ratio < 0.75) are skipped, so at 1 screen px = 2 image px the
-    // next coarser level is drawn, never a half-faded finer one.
-    minPixelRatio: 0.75,
+    // Full detail. Tests that need a level chosen exactly (a zoom of 1/2 showing the next coarser
+    // level, never a half-faded finer one) pass 0.75 through `osd` (the demo page: ?minPixelRatio=).
+    minPixelRatio: FULL_DETAIL,
     maxZoomPixelRatio: 16,
     minZoomImageRatio: 0.05,
     visibilityRatio: 0.1,
-    maxImageCacheCount: 150,
+    // Sized by the view (cache-budget.ts); sized again for the manifest's layers by sizeTileCache.
+    maxImageCacheCount: cacheTileCount({
+      width: element.clientWidth, height: element.clientHeight,
+      minPixelRatio: osd?.minPixelRatio ?? FULL_DETAIL, planes: DEFAULT_PLANES,
+    }),
     // At most 8 bundles (8·K plane requests) at a time: OpenSeadragon's time limit (`timeout`) runs
     // from a job's start, so without a limit a tile queued behind hundreds of plane requests in the
     // browser could time out on a slow network without anything being wrong.
@@ -51,4 +62,17 @@ export function relightDrawerOf(viewer: OpenSeadragon.Viewer): RelightDrawer {
     throw new WebGLUnavailableError('WebGL2 is not available, so the Lanterna drawer could not start');
   }
   return d;
+}
+
+/**
+ * Size the tile cache for the viewer's view and its heaviest layer (`planes` plane groups per
+ * bundle), unless the caller set `maxImageCacheCount` itself (see cache-budget.ts).
+ */
+export function sizeTileCache(viewer: OpenSeadragon.Viewer, planes: number, osd?: Partial<OpenSeadragon.Options>): void {
+  if (osd?.maxImageCacheCount !== undefined) {
+    return;
+  }
+  const size = viewer.viewport.getContainerSize();
+  const minPixelRatio = (viewer as unknown as { minPixelRatio?: number }).minPixelRatio ?? FULL_DETAIL;
+  relightDrawerOf(viewer).setTileCacheCount(cacheTileCount({ width: size.x, height: size.y, minPixelRatio, planes }));
 }

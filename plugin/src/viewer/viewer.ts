@@ -25,7 +25,7 @@ import { whenFullyLoaded } from './fully-loaded';
 import { LayerSlots, levelOf, type LayerSlot } from './layer-slots';
 import { LensWiring } from './lens-wiring';
 import { ViewerNotices } from './notices';
-import { createOsdViewer, relightDrawerOf } from './osd-viewer';
+import { createOsdViewer, relightDrawerOf, sizeTileCache } from './osd-viewer';
 import { OverlayWiring } from './overlay-wiring';
 
 /**
@@ -168,6 +168,7 @@ export function createViewer(options: CreateViewerOptions): LanternaViewer {
   const ready = (async () => {
     const parsed = parseManifest(await fetchJson(options.manifest, options.fetchInit));
     manifest = parsed;
+    sizeTileCache(viewer, Math.max(...parsed.layers.map((l) => l.layer.planes.length)), options.osd);
     slots.add(parsed.layers);
     await activate(slots.require(options.layer ?? parsed.layers[0]?.id ?? ''));
     applyLight(light);
@@ -256,7 +257,9 @@ export function createViewer(options: CreateViewerOptions): LanternaViewer {
       sync();
       viewer.forceRedraw();
     },
-    whenFullyLoaded: () => whenFullyLoaded(viewer, () => overlays.isBusy() || lens.isBusy(), () => destroyed),
+    // Busy also while the drawer has put a frame off or still has textures to upload.
+    whenFullyLoaded: () => whenFullyLoaded(viewer, () => overlays.isBusy() || lens.isBusy() || !drawer().isSettled(),
+      () => destroyed),
     readPixels: () => drawer().readPixels(),
     destroy() {
       if (destroyed) {
