@@ -29,6 +29,7 @@ from tests.python.fixtures.manifests import without_descriptions
 from tests.python.fixtures.ptm import random_ptm_of_size
 from tests.python.fixtures.ptm_relight import TOLERANCE
 from tests.python.fixtures.servers import LiveServer
+from tests.python.fixtures.stored import stored_format
 
 pytestmark = pytest.mark.browser
 
@@ -79,7 +80,11 @@ def _relight(layer: dict[str, Any],
 
 
 def _read(path: Path) -> npt.NDArray[np.uint8]:
-    px: npt.NDArray[np.uint8] = pyvips.Image.new_from_file(str(path)).numpy()
+    """A stored plane file, in the tile format its image was written in (``default.*``)."""
+    image_dir = next(p for p in path.parents if p.parent.name == "iiif")
+    fmt = stored_format(image_dir.parent.parent, image_dir.name)
+    px: npt.NDArray[np.uint8] = pyvips.Image.new_from_file(
+        str(path.with_suffix(f".{fmt}"))).numpy()
     return px
 
 
