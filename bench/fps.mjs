@@ -9,6 +9,8 @@
 //
 // Options: --dataset NAME (bench), --layers a,b,… (ptm_lrgb,ptm_rgb,hsh9,hsh16,svbrdf,image),
 // --reference ID (plain), --width/--height (1920×1080).
+// --modes color,unsharpNormals,… : instead, each layer in each mode against the same layer in the
+// first mode (interleaved), e.g. the unsharp modes against colour.
 import { cpus, totalmem } from 'node:os';
 import { writeFileSync } from 'node:fs';
 import process from 'node:process';
@@ -34,6 +36,7 @@ const { values: opt } = parseArgs({
     width: { type: 'string', default: '1920' },
     height: { type: 'string', default: '1080' },
     json: { type: 'string' },
+    modes: { type: 'string' },
   },
 });
 const layers = opt.layers.split(',').filter(Boolean);
@@ -93,17 +96,22 @@ async function firstFrame(browser, layer) {
 }
 
 /** Frames drawn per second while the light moves every frame (view already fully loaded). */
-async function measureFps(page, layer, durationMs) {
-  await page.evaluate(async (id) => {
+async function measureFps(page, layer, durationMs, mode = 'color') {
+  await page.evaluate(async ({ id, m }) => {
     await window.lanterna.setActiveLayer(id);
+    window.lanterna.setRenderMode(m);
     await window.lanterna.whenFullyLoaded();
-  }, layer);
+  }, { id: layer, m: mode });
   return page.evaluate((ms) => new Promise((resolve) => {
     const l = window.lanterna;
     const drawer = l.viewer.drawer;
-    let draws = 0;
+    // Frames rendered: the drawer's own count where it has one (it skips draws with nothing new),
+    // else the draw calls (older builds render on every draw).
+    const counted = typeof drawer.getFrameCount === 'function';
+    const start = counted ? drawer.getFrameCount() : 0;
+    let calls = 0;
     const draw = drawer.draw.bind(drawer);
-    drawer.draw = (items) => { draws++; draw(items); };
+    drawer.draw = (items) => { calls++; draw(items); };
     let frame = 0;
     const t0 = performance.now();
     const tick = (now) => {
@@ -115,6 +123,7 @@ async function measureFps(page, layer, durationMs) {
       } else {
         const elapsed = (performance.now() - t0) / 1000;
         drawer.draw = draw;
+        const draws = counted ? drawer.getFrameCount() - start : calls;
         resolve({ fps: draws / elapsed, rafFps: frame / elapsed });
       }
     };
@@ -125,6 +134,10 @@ async function measureFps(page, layer, durationMs) {
 async function main() {
   const browser = await chromium.launch({ executablePath: CHROMIUM, args: ARGS, headless: true });
   try {
+    if (opt.modes) {
+      await modesRun(browser);
+      return;
+    }
     const all = [opt.reference, ...layers];
     const first = {};
     for (const layer of all) {
@@ -185,6 +198,45 @@ async function main() {
     }
   } finally {
     await browser.close();
+  }
+}
+
+/** `--modes`: each layer in each mode against the same layer in the first mode, interleaved. */
+async function modesRun(browser) {
+  const [base, ...modes] = opt.modes.split(',').filter(Boolean);
+  const { page } = await openPage(browser);
+  await page.goto(pageUrl(layers[0]), { waitUntil: 'load' });
+  await page.waitForFunction(() => window.lanterna !== undefined);
+  await page.evaluate(async ({ w, h }) => {
+    const l = window.lanterna;
+    await l.ready;
+    const layer = l.layer.layer;
+    l.showImageRegion(Math.round((layer.width - w) / 2), Math.round((layer.height - h) / 2), w, h);
+  }, { w: viewport.width, h: viewport.height });
+  const rows = {};
+  for (let round = 0; round < rounds; round++) {
+    for (const layer of layers) {
+      const order = modes.slice(round % modes.length).concat(modes.slice(0, round % modes.length));
+      for (const mode of order) {
+        const ref = await measureFps(page, layer, seconds * 1000, base);
+        const got = await measureFps(page, layer, seconds * 1000, mode);
+        const row = (rows[`${layer} ${mode}`] ??= { layer, mode, fps: [], baseFps: [], ratios: [] });
+        row.fps.push(got.fps);
+        row.baseFps.push(ref.fps);
+        row.ratios.push(got.fps / ref.fps);
+        process.stderr.write(`round ${round + 1} ${layer} ${mode}: ${got.fps.toFixed(2)} fps vs ${base} `
+          + `${ref.fps.toFixed(2)} fps → ${(got.fps / ref.fps).toFixed(3)}\n`);
+      }
+    }
+  }
+  process.stdout.write(`| layer | mode | fps (median) | ${base} fps (median) | ratio (median) |\n|---|---|---|---|---|\n`);
+  for (const r of Object.values(rows)) {
+    process.stdout.write(`| ${r.layer} | ${r.mode} | ${median(r.fps).toFixed(2)} | ${median(r.baseFps).toFixed(2)} `
+      + `| ${median(r.ratios).toFixed(3)} |\n`);
+  }
+  if (opt.json) {
+    writeFileSync(opt.json, `${JSON.stringify({ date: new Date().toISOString(),
+      settings: { dataset: opt.dataset, base, modes, seconds, rounds }, rows }, null, 2)}\n`);
   }
 }
 
