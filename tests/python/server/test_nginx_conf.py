@@ -26,6 +26,7 @@ from lanterna.tiler.dataset.writer import DatasetWriter
 from lanterna.tiler.inputs.images import load_rgb_image
 from tests.python.fixtures.dataset_kinds import build_kinds
 from tests.python.fixtures.paths import REPO, SHARED, shared_file
+from tests.python.fixtures.stored import stored_format
 
 CONF = REPO / "docs" / "nginx" / "lanterna.conf"
 IDENT = "67352ccc-d1b0-11e1-89ae-279075081939"
@@ -146,9 +147,17 @@ def test_json_media_types_cors_caching_and_gzip(nginx: Nginx) -> None:
     assert h["access-control-allow-origin"] == "*"
 
 
+#: How each plane tile format's files begin, and the media type nginx must send.
+MAGIC = {"png": (b"\x89PNG", "image/png"), "webp": (b"RIFF", "image/webp"),
+         "jpg": (b"\xff\xd8\xff", "image/jpeg")}
+
+
 def test_tiles_and_viewer_assets(nginx: Nginx) -> None:
-    status, h, body = nginx.request("GET", "/iiif/multi/iiif/ptm_c0/full/max/0/default.png")
-    assert status == 200 and h["content-type"] == "image/png" and body[:4] == b"\x89PNG"
+    # the plane's format is what --plane-format auto chose (png or lossless webp: the smaller)
+    fmt = stored_format(nginx.www / "iiif" / "multi", "ptm_c0")
+    status, h, body = nginx.request("GET", f"/iiif/multi/iiif/ptm_c0/full/max/0/default.{fmt}")
+    magic, media_type = MAGIC[fmt]
+    assert status == 200 and h["content-type"] == media_type and body.startswith(magic)
     assert h["access-control-allow-origin"] == "*"
     assert h["cache-control"] == "public, max-age=86400"
     _, h, _ = nginx.request("GET", "/iiif/multi/iiif/ptm_preview/full/max/0/default.jpg")
