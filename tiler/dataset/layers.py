@@ -51,10 +51,12 @@ def add_planes_layer(ds: DatasetWriter, layer: PlaneLayer, *, layer_id: str, lab
     for i, group in enumerate(layer.groups):
         data = group.data
         image = data.vips() if isinstance(data, BandImage) else np.ascontiguousarray(data)
-        fmt = choose_format(group, plane_format, tile_size=ds.tile_size)
-        svc = ds.add_image(f"{layer_id}_{layer.group_names[i]}", image, fmt=fmt,
-                           share_key=(share or {}).get(i))
-        stored = ds.images[svc["id"].rsplit("/", 1)[1]]  # a shared group's first image
+        key = (share or {}).get(i)
+        first = ds.shared_image(key)  # a shared group is stored once, in its first format
+        fmt = (ds.images[first]["format"] if first is not None
+               else choose_format(group, plane_format, tile_size=ds.tile_size))
+        svc = ds.add_image(f"{layer_id}_{layer.group_names[i]}", image, fmt=fmt, share_key=key)
+        stored = ds.images[svc["id"].rsplit("/", 1)[1]]
         planes.append({"service": svc, "format": stored["format"],
                        "channels": list(group.channels),
                        "scale": list(group.scale), "bias": list(group.bias)})

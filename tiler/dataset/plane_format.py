@@ -136,9 +136,10 @@ def measure(group: PlaneGroup, *, tile_size: int = 256,
             size += len(data)
             if not fmt.lossless:
                 err = decode(data, tile.ndim).astype(np.int16) - tile
+                size_err = np.abs(err)
                 sq += float(np.square(err, dtype=np.float64).sum())
-                top = max(top, int(np.abs(err).max()))
-                over += int(np.count_nonzero(np.abs(err) > ERROR_TOLERANCE))
+                top = max(top, int(size_err.max()))
+                over += int(np.count_nonzero(size_err > ERROR_TOLERANCE))
                 count += err.size
         choice = Choice(fmt, size, (sq / count) ** 0.5 if count else 0.0, top,
                         over / count if count else 0.0)

@@ -121,8 +121,9 @@ class DatasetWriter:
         (and ``quality`` when it has one).
         """
         assert self._tmp is not None, "use DatasetWriter as a context manager"
-        if share_key is not None and share_key in self._shared:
-            return self._service(self._shared[share_key])
+        shared = self.shared_image(share_key)
+        if shared is not None:
+            return self._service(shared)
         check_identifier(identifier, "image identifier")
         if identifier in self.images:
             raise LanternaInputError(self.source, f"image id {identifier!r} is used twice "
@@ -153,6 +154,10 @@ class DatasetWriter:
         if share_key is not None:
             self._shared[share_key] = identifier
         return self._service(identifier)
+
+    def shared_image(self, share_key: str | None) -> str | None:
+        """The identifier of the image already stored under ``share_key``, if any."""
+        return None if share_key is None else self._shared.get(share_key)
 
     def _service(self, identifier: str) -> dict[str, Any]:
         return {"id": f"{self.dataset_url}/iiif/{identifier}", "type": "ImageService3",
