@@ -51,7 +51,8 @@ export interface FrameItems<T> {
  */
 export function sortItems<I extends ItemLike, T>(entries: readonly { item: I; tiles: T[] }[], view: Mat3,
   roleOf: (item: I) => 'lens' | 'overlay' | undefined, layerOf: (item: I) => ResolvedLayer | undefined): FrameItems<T> {
-  const out: FrameItems<T> = { layers: [], lensLayer: null, overlays: [] };
+  const layers: FrameLayer<T>[] = [];
+  const overlays: FrameItem<T>[] = [];
   let lensLayer: FrameLayer<T> | null = null;
   for (const { item, tiles } of entries) {
     if (item.getOpacity() === 0 || tiles.length === 0) {
@@ -61,12 +62,12 @@ export function sortItems<I extends ItemLike, T>(entries: readonly { item: I; ti
     const layer = layerOf(item);
     const matrix = multiply(view, itemRotation(item));
     if (role === 'overlay') {
-      out.overlays.push({ tiles, matrix });
+      overlays.push({ tiles, matrix });
     } else if (layer && role === 'lens') {
       lensLayer = { tiles, matrix, layer };
     } else if (layer) {
-      out.layers.push({ tiles, matrix, layer });
+      layers.push({ tiles, matrix, layer });
     }
   }
-  return { ...out, lensLayer };
+  return { layers, lensLayer, overlays };
 }

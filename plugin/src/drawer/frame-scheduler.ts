@@ -41,11 +41,6 @@ export class FrameScheduler {
     return !this.#waiting;
   }
 
-  /** GPU time of the last measured frame (ms; 0 before the first). */
-  get lastCostMs(): number {
-    return this.#cost;
-  }
-
   /** Forget the last frame (a lost context): the next frame renders whatever it is. */
   reset(): void {
     this.#last = null;

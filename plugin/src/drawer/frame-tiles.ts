@@ -42,27 +42,28 @@ export function prepareFrameTiles<I extends ItemLike, T extends { squaredDistanc
   entries: readonly FrameEntry<I, T>[], options: PrepareOptions<T>): FrameTiles {
   const { gl, generation } = options;
   const visible = entries.filter((e) => e.item.getOpacity() > 0);
+  // each visible item's tiles' texture records, looked up once
+  const records = visible.map(({ tiles }) => tiles.map((tile) => options.textureOf(tile)));
   const waiting: PendingUpload<TileTexture>[] = [];
-  for (const { tiles } of visible) {
-    for (const tile of tiles) {
-      const data = options.textureOf(tile);
+  visible.forEach(({ tiles }, i) => {
+    tiles.forEach((tile, k) => {
+      const data = records[i]?.[k];
       if (data && uploadPending(data, generation)) {
         waiting.push({ tile: data, bytes: textureBytes(data), distance: tile.squaredDistance ?? Infinity });
       }
-    }
-  }
+    });
+  });
   const picked = options.all ? waiting.map((w) => w.tile) : pickUploads(waiting);
   for (const data of picked) {
     currentTexture(gl, data, generation);
   }
   const key: unknown[] = [];
-  for (const { item, tiles } of visible) {
+  visible.forEach(({ item, tiles }, i) => {
     key.push(item, tiles.length);
-    for (const tile of tiles) {
-      const data = options.textureOf(tile);
+    for (const data of records[i] ?? []) {
       key.push(data ? uploadedTexture(gl, data, generation) : null);
     }
-  }
+  });
   return {
     key,
     pending: picked.length < waiting.length,

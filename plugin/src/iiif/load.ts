@@ -3,7 +3,7 @@
  * description the manifest embeds, else the group's `info.json`.
  */
 import { FetchError, ImageInfoError, MismatchedPlanesError } from './errors';
-import { commonGeometry, imageGeometry, type ImageGeometry } from './image-info';
+import { commonGeometry, imageGeometry, type EmbeddedImage, type ImageGeometry } from './image-info';
 import { parseManifest, type ManifestInfo, type ManifestLayer } from './manifest';
 
 /** A layer with its plane groups' image information, ready to build a tile source. */
@@ -92,21 +92,33 @@ export function cachedInfo(url: string, init: RequestInit | undefined, cache: In
 }
 
 /**
- * The image information of every plane group of a layer: the description its service embeds in the
- * manifest, else its `{service.id}/info.json` (fetched through `cache`); checked that the groups
- * share one geometry matching the relight block.
+ * One image's information: the description its service embeds in the manifest (`embedded`), else
+ * its `{serviceId}/info.json`, fetched through `cache`; `where` names it in messages.
+ *
+ * @throws {@link FetchError} or {@link ImageInfoError}
+ */
+export async function imageInfo(serviceId: string, embedded: EmbeddedImage | null, init: RequestInit | undefined,
+  cache: InfoCache): Promise<EmbeddedImage> {
+  if (embedded) {
+    return embedded;
+  }
+  const url = `${serviceId}/info.json`;
+  const info = await cachedInfo(url, init, cache);
+  return { info, geometry: imageGeometry(info, url), where: url };
+}
+
+/**
+ * The image information of every plane group of a layer ({@link imageInfo}), checked that the
+ * groups share one geometry matching the relight block.
  */
 export async function loadLayer(layer: ManifestLayer, init?: RequestInit, cache: InfoCache = new Map()):
   Promise<LoadedLayer> {
-  const planes = layer.layer.planes;
-  const urls = planes.map((plane) => `${plane.serviceId}/info.json`);
-  const infos = await Promise.all(planes.map((plane, i) => (plane.embedded
-    ? Promise.resolve(plane.embedded.info) : cachedInfo(urls[i] ?? '', init, cache))));
-  const geometries = infos.map((info, i) => planes[i]?.embedded?.geometry ?? imageGeometry(info, urls[i]));
-  const names = planes.map((plane, i) => plane.embedded?.where ?? urls[i] ?? '');
+  const images = await Promise.all(layer.layer.planes.map((plane) => imageInfo(plane.serviceId, plane.embedded,
+    init, cache)));
+  const infos = images.map((image) => image.info);
   let geometry: ImageGeometry;
   try {
-    geometry = commonGeometry(geometries, layer.layer, names);
+    geometry = commonGeometry(images.map((image) => image.geometry), layer.layer, images.map((image) => image.where));
   } catch (error) {
     if (error instanceof MismatchedPlanesError) {
       throw new MismatchedPlanesError(`layer ${layer.id}: ${error.message}`, { cause: error });

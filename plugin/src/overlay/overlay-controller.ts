@@ -4,8 +4,7 @@
  * level matching the current level is visible; the others have opacity 0, so they load nothing.
  */
 import type OpenSeadragon from 'openseadragon';
-import { cachedInfo, type InfoCache } from '../iiif/load';
-import { imageGeometry } from '../iiif/image-info';
+import { imageInfo, type InfoCache } from '../iiif/load';
 import type { ManifestLayer } from '../iiif/manifest';
 import { overlayAt, type OverlayLevel } from '../iiif/overlays';
 import { wholeLevelTiling } from '../iiif/whole-levels';
@@ -87,14 +86,13 @@ export class OverlayController {
     let pending = this.#items.get(key);
     if (!pending) {
       pending = (async () => {
-        const url = `${level.serviceId}/info.json`;
-        const json = level.embedded?.info ?? await cachedInfo(url, this.#options.fetchInit, this.#options.infoCache);
-        const geometry = level.embedded?.geometry ?? imageGeometry(json, url);
-        const whole = wholeLevelTiling([json], geometry, this.#options.wholeLevelMaxSide);
+        const { info, geometry } = await imageInfo(level.serviceId, level.embedded, this.#options.fetchInit,
+          this.#options.infoCache);
+        const whole = wholeLevelTiling([info], geometry, this.#options.wholeLevelMaxSide);
         const item = await addBundleItem(this.#viewer, {
-          infos: whole?.infos ?? [json],
+          infos: whole?.infos ?? [info],
           geometry: whole?.geometry ?? geometry,
-      cutoffLevel: whole?.cutoffLevel,
+          cutoffLevel: whole?.cutoffLevel,
           formats: ['png'],
           width: overlayItemWidth(level, canvasWidth),
           opacity: 0,

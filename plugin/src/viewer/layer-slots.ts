@@ -12,6 +12,7 @@ import { wholeLevelTiling, type WholeLevelView } from '../iiif/whole-levels';
 import { layerKindOf, type LayerKind } from '../layers/layer-kinds';
 import { currentLevel, imagePxPerDevicePx, maxLevelOf } from '../math/levels';
 import { addBundleItem } from '../tiles/add-item';
+import { minPixelRatioOf } from './osd-viewer';
 
 /** One manifest layer and what has been opened of it. */
 export interface LayerSlot {
@@ -136,8 +137,7 @@ function openingView(viewer: OpenSeadragon.Viewer, geometry: ImageGeometry): Who
   const displayWidth = viewer.world.getItemCount() === 0
     ? Math.min(container.x, container.y * geometry.width / geometry.height)
     : viewer.viewport.getZoom(false) * container.x;
-  const { minPixelRatio } = viewer as unknown as { minPixelRatio?: number };
-  return { displayWidth, minPixelRatio: minPixelRatio ?? 0.5 };
+  return { displayWidth, minPixelRatio: minPixelRatioOf(viewer) };
 }
 
 /** The current level (`docs/annotations.md`), from the zoom of `slot`'s item (0 when it is not open). */

@@ -73,6 +73,12 @@ export function sizeTileCache(viewer: OpenSeadragon.Viewer, planes: number, osd?
     return;
   }
   const size = viewer.viewport.getContainerSize();
-  const minPixelRatio = (viewer as unknown as { minPixelRatio?: number }).minPixelRatio ?? FULL_DETAIL;
-  relightDrawerOf(viewer).setTileCacheCount(cacheTileCount({ width: size.x, height: size.y, minPixelRatio, planes }));
+  relightDrawerOf(viewer).setTileCacheCount(cacheTileCount({
+    width: size.x, height: size.y, minPixelRatio: minPixelRatioOf(viewer), planes,
+  }));
+}
+
+/** The viewer's `minPixelRatio` (an option OpenSeadragon keeps on the viewer; untyped there). */
+export function minPixelRatioOf(viewer: OpenSeadragon.Viewer): number {
+  return (viewer as unknown as { minPixelRatio?: number }).minPixelRatio ?? FULL_DETAIL;
 }
