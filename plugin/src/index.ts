@@ -50,3 +50,11 @@ export { lensHit, LENS_BORDER_PX, type Circle, type LensHit } from './math/lens'
 export { currentLevel } from './math/levels';
 export { parseOverlays, OVERLAY_SERVICE_TYPE, OVERLAY_PROFILE, type OverlayLevel } from './iiif/overlays';
 export type { OverlayState } from './overlay/overlay-controller';
+export {
+  PRESETS_PROFILE, PRESETS_TYPE, PresetError, addPreset, emptyLibrary, entryLayer, libraryLayers,
+  presetId, serializeLibrary, type LensPresetEntry, type Preset, type PresetDataset, type PresetEntry,
+  type PresetLibrary, type PresetTarget,
+} from './presets/library';
+export { parsePresetLibrary } from './presets/read-library';
+export { PresetIndexError } from './viewer/preset-actions';
+export { PHYSDIM_PROFILE, type LabelValue, type PhysicalScale, type PhysicalUnits } from './iiif/manifest';

@@ -23,15 +23,17 @@ const ALLOWED: Readonly<Record<string, readonly string[]>> = {
   layers: ['errors', 'math', 'iiif', 'render', 'gl'],
   tiles: ['errors', 'iiif'],
   lens: ['errors', 'math', 'render'],
+  presets: ['errors', 'render'],
   ui: ['errors', 'math'],
   // overlay-state sanitises the hypertext with ui/sanitize-html (a pure function).
   overlay: ['errors', 'iiif', 'tiles', 'ui'],
   drawer: ['errors', 'math', 'iiif', 'render', 'gl', 'layers', 'tiles', 'lens'],
-  api: ['errors', 'math', 'iiif', 'render', 'lens', 'overlay', 'ui', 'drawer'],
-  panel: ['errors', 'math', 'iiif', 'render', 'lens', 'overlay', 'ui', 'api'],
-  viewer: ['errors', 'math', 'iiif', 'render', 'layers', 'tiles', 'lens', 'overlay', 'ui', 'drawer', 'api', 'panel'],
+  api: ['errors', 'math', 'iiif', 'render', 'lens', 'overlay', 'ui', 'drawer', 'presets'],
+  panel: ['errors', 'math', 'iiif', 'render', 'lens', 'overlay', 'ui', 'api', 'presets'],
+  viewer: ['errors', 'math', 'iiif', 'render', 'layers', 'tiles', 'lens', 'overlay', 'ui', 'drawer', 'api', 'panel',
+    'presets'],
   index: ['errors', 'math', 'iiif', 'render', 'gl', 'layers', 'tiles', 'lens', 'ui', 'overlay', 'drawer', 'api',
-    'panel', 'viewer'],
+    'panel', 'viewer', 'presets'],
   demo: ['index'],
 };
 
@@ -42,7 +44,7 @@ const PACKAGES: Readonly<Record<string, readonly string[]>> = {
 };
 
 /** Parts that are pure: no DOM, no GL (they run, and are tested, in Node). */
-const PURE = ['errors', 'math', 'iiif', 'render'];
+const PURE = ['errors', 'math', 'iiif', 'render', 'presets'];
 const DOM_OR_GL = new RegExp('\\b(document|window|navigator|requestAnimationFrame|createImageBitmap|OffscreenCanvas'
   + '|HTML\\w*Element|WebGL\\w*)\\b');
 

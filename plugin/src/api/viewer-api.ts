@@ -12,6 +12,7 @@ import type { LayerType } from '../iiif/relight-service';
 import type { LensState, LensUpdate } from '../lens/lens-state';
 import type { Light } from '../math/light';
 import type { OverlayState } from '../overlay/overlay-state';
+import type { Preset, PresetLibrary, PresetTarget } from '../presets/library';
 import type { RenderMode, ShadingClass } from '../render/modes';
 import type { RenderParams } from '../render/params';
 import type { DragMode } from '../ui/interaction';
@@ -49,6 +50,16 @@ export interface CreateViewerOptions {
    * error after `ready` (see {@link LanternaViewer.getNotices}). @default true
    */
   notices?: boolean;
+  /**
+   * Open only these layer ids (in manifest order); the others are not listed and never loaded.
+   * `'presets'`: only the layers the preset library's entries use. @default every layer
+   */
+  layers?: readonly string[] | 'presets';
+  /**
+   * The preset library (`docs/presets.md`): its URL, or the document itself. @default the manifest's
+   * `LanternaPresets` service, if any
+   */
+  presets?: string | object;
 }
 
 /** What a notice is about. */
@@ -156,6 +167,30 @@ export interface LanternaViewer {
   whenFullyLoaded(): Promise<void>;
   /** Render a frame now and read it back: RGBA, rows top-down, device pixels. */
   readPixels(): PixelData;
+  /**
+   * The region of the image in view (x, y, w, h in full-resolution image pixels, clipped to the image),
+   * or null before `ready`.
+   */
+  getImageRegion(): [number, number, number, number] | null;
+  /** The preset library (the one given, else the manifest's, else an empty one). */
+  getPresetLibrary(): PresetLibrary;
+  /**
+   * Replace the preset library (e.g. an imported file). It is checked against this dataset first;
+   * throws `PresetError` naming the JSON path of the first problem, and then nothing changes.
+   *
+   * @param source - what to name in errors (a file name)
+   */
+  setPresetLibrary(library: unknown, source?: string): PresetLibrary;
+  /**
+   * Apply entry `index` of the library's `base` or `lens` list (`docs/presets.md`); the same as making
+   * its calls by hand. Rejects with `PresetIndexError` for a missing entry.
+   */
+  applyPreset(target: PresetTarget, index: number): Promise<void>;
+  /**
+   * The current base (layer, mode, the parameters the mode uses, light; the view if `withView`) or lens
+   * (layer, mode, parameters) as a preset named `label` (not added to the library).
+   */
+  capturePreset(target: PresetTarget, label: string, withView?: boolean): Preset;
   /** Remove the viewer and free its GL resources. */
   destroy(): void;
 }

@@ -30,7 +30,44 @@ export interface ManifestInfo {
   readonly imageId: string;
   /** The default layer (= `layers[0].layer`). */
   readonly layer: RelightLayer;
+  /** The manifest's summary (first value of its language map), or ''. */
+  readonly summary: string;
+  /** Its `metadata` pairs (first values of their language maps), in order. */
+  readonly metadata: readonly LabelValue[];
+  /** Its `requiredStatement` (attribution), or null. */
+  readonly requiredStatement: LabelValue | null;
+  /** Its `rights` URL, or ''. */
+  readonly rights: string;
+  /**
+   * Its preset library service block (`docs/presets.md`: `type` `LanternaPresets`), unparsed: it is read
+   * against the layers by `parsePresetLibrary`. Null when there is none.
+   */
+  readonly presets: unknown;
+  /** The canvas's physical scale (a IIIF `physdim` service), or null when it has none. */
+  readonly physicalScale: PhysicalScale | null;
 }
+
+/** A label and a value (IIIF `metadata`, `requiredStatement`), as plain strings. */
+export interface LabelValue {
+  readonly label: string;
+  /** May hold the small HTML subset IIIF allows: sanitise before showing it as HTML. */
+  readonly value: string;
+}
+
+/** The physical size of one canvas pixel (the IIIF Physical Dimensions service). */
+export interface PhysicalScale {
+  /** Units per canvas pixel. */
+  readonly scale: number;
+  readonly units: PhysicalUnits;
+}
+
+/** The units of the Physical Dimensions service. */
+export type PhysicalUnits = 'mm' | 'cm' | 'in';
+
+/** The profile of the IIIF Physical Dimensions service. */
+export const PHYSDIM_PROFILE = 'http://iiif.io/api/annex/services/physdim';
+/** The `type` of a preset library service block. */
+const PRESETS_SERVICE_TYPE = 'LanternaPresets';
 
 /**
  * First string of a IIIF language map (`{"en": ["Ushabti"]}`), preferring `en`, then `none`.
@@ -160,6 +197,46 @@ export function parseManifest(manifest: unknown): ManifestInfo {
   }
   const overlays = parseOverlays(canvas, layers.map((l) => l.id));
   const withOverlays = layers.map((l) => ({ ...l, overlays: overlays.get(l.id) ?? [] }));
-  const label = isRecord(manifest) ? labelText(manifest.label) : '';
-  return { label, layers: withOverlays, imageId: first.imageId, layer: first.layer };
+  const doc: Json = isRecord(manifest) ? manifest : {};
+  return {
+    label: labelText(doc.label),
+    layers: withOverlays,
+    imageId: first.imageId,
+    layer: first.layer,
+    summary: labelText(doc.summary),
+    metadata: asArray(doc.metadata).map(labelValue).filter((m): m is LabelValue => m !== null),
+    requiredStatement: labelValue(doc.requiredStatement),
+    rights: typeof doc.rights === 'string' ? doc.rights : '',
+    presets: asArray(doc.service).find((s) => isRecord(s) && s.type === PRESETS_SERVICE_TYPE) ?? null,
+    physicalScale: physicalScaleOf(canvas),
+  };
+}
+
+/** A IIIF `{label, value}` pair as strings, or null when it is not one. */
+function labelValue(x: unknown): LabelValue | null {
+  if (!isRecord(x)) {
+    return null;
+  }
+  const label = labelText(x.label);
+  const value = labelText(x.value);
+  return label || value ? { label, value } : null;
+}
+
+/**
+ * The canvas's physdim service (found by its profile; `physicalScale` a positive number and
+ * `physicalUnits` mm, cm or in), or null. A malformed one is ignored: a scale bar is optional.
+ */
+function physicalScaleOf(canvas: Json): PhysicalScale | null {
+  for (const s of asArray(canvas.service)) {
+    if (!isRecord(s) || asArray(s.profile).every((p) => p !== PHYSDIM_PROFILE)) {
+      continue;
+    }
+    const scale = s.physicalScale;
+    const units = s.physicalUnits;
+    if (typeof scale === 'number' && Number.isFinite(scale) && scale > 0
+      && (units === 'mm' || units === 'cm' || units === 'in')) {
+      return { scale, units };
+    }
+  }
+  return null;
 }

@@ -16,6 +16,8 @@ import { DEFAULT_WHOLE_LEVEL_MAX_SIDE } from '../iiif/whole-levels';
 import { initialLens } from '../lens/lens-state';
 import { lightFromProjection, type Light } from '../math/light';
 import { overlayState } from '../overlay/overlay-controller';
+import { emptyLibrary, entryLayer, type PresetLibrary } from '../presets/library';
+import { parsePresetLibrary } from '../presets/read-library';
 import { DEFAULT_RENDER_MODE, isRenderMode, type RenderMode } from '../render/modes';
 import { DEFAULT_RENDER_PARAMS, mergeParams, type RenderParams } from '../render/params';
 import { RelightDrawer } from '../drawer/relight-drawer';
@@ -27,6 +29,8 @@ import { LensWiring } from './lens-wiring';
 import { ViewerNotices } from './notices';
 import { createOsdViewer, relightDrawerOf, sizeTileCache } from './osd-viewer';
 import { OverlayWiring } from './overlay-wiring';
+import { applyPresetEntry, capturePreset } from './preset-actions';
+import { openPresetLibrary, presetDataset, selectLayers } from './preset-library';
 
 /**
  * Create a viewer for a Lanterna manifest.
@@ -51,6 +55,7 @@ export function createViewer(options: CreateViewerOptions): LanternaViewer {
   let renderMode: RenderMode = DEFAULT_RENDER_MODE;
   let params: RenderParams = DEFAULT_RENDER_PARAMS;
   let manifest: ManifestInfo | null = null;
+  let library: PresetLibrary = emptyLibrary();
   let active: LayerSlot | null = null;
   const initial = initialLens(element.clientWidth || 640, element.clientHeight || 480);
   const infoCache: InfoCache = new Map();
@@ -166,11 +171,19 @@ export function createViewer(options: CreateViewerOptions): LanternaViewer {
   };
 
   const ready = (async () => {
-    const parsed = parseManifest(await fetchJson(options.manifest, options.fetchInit));
+    const whole = parseManifest(await fetchJson(options.manifest, options.fetchInit));
+    const opened = await openPresetLibrary(whole, options.presets, options.manifest, options.fetchInit);
+    library = opened.library;
+    const parsed = selectLayers(whole, options.layers, library);
     manifest = parsed;
     sizeTileCache(viewer, Math.max(...parsed.layers.map((l) => l.layer.planes.length)), options.osd);
     slots.add(parsed.layers);
-    await activate(slots.require(options.layer ?? parsed.layers[0]?.id ?? ''));
+    const firstEntry = options.layers === 'presets' ? library.base[0] : undefined;
+    const first = options.layer ?? (firstEntry ? entryLayer(library, firstEntry) : undefined);
+    await activate(slots.require(first ?? parsed.layers[0]?.id ?? ''));
+    if (opened.error !== null) {
+      reportError(opened.error);
+    }
     applyLight(light);
   })().catch((error: unknown) => {
     // Always a LanternaError, whatever failed underneath (OpenSeadragon, the browser).
@@ -261,6 +274,29 @@ export function createViewer(options: CreateViewerOptions): LanternaViewer {
     whenFullyLoaded: () => whenFullyLoaded(viewer, () => overlays.isBusy() || lens.isBusy() || !drawer().isSettled(),
       () => destroyed),
     readPixels: () => drawer().readPixels(),
+    getImageRegion() {
+      if (!active?.tiledImage || !manifest) {
+        return null;
+      }
+      const bounds = active.tiledImage.viewportToImageRectangle(viewer.viewport.getBounds(true));
+      const x0 = Math.max(0, bounds.x);
+      const y0 = Math.max(0, bounds.y);
+      const x1 = Math.min(manifest.layer.width, bounds.x + bounds.width);
+      const y1 = Math.min(manifest.layer.height, bounds.y + bounds.height);
+      const r = (v: number): number => Math.round(v * 100) / 100;
+      return x1 > x0 && y1 > y0 ? [r(x0), r(y0), r(x1 - x0), r(y1 - y0)] : null;
+    },
+    getPresetLibrary: () => library,
+    setPresetLibrary(doc: unknown, source = 'the preset library') {
+      if (!manifest) {
+        throw new LanternaError('the viewer is not ready yet (await ready)');
+      }
+      library = parsePresetLibrary(doc, source, presetDataset(manifest, slots.list()));
+      notify();
+      return library;
+    },
+    applyPreset: (target, index) => applyPresetEntry(api, library, target, index),
+    capturePreset: (target, label, withView = false) => capturePreset(api, target, label, withView),
     destroy() {
       if (destroyed) {
         return;
