@@ -25,9 +25,17 @@ const valid = (): Record<string, unknown> => ({
   lens: [{ label: 'Infrared', preset: 'ir', opacity: 0.8 }],
 });
 
+/** A library document as the tests edit it. */
+interface Doc {
+  [key: string]: unknown;
+  presets: Record<string, Record<string, unknown> & { params: Record<string, unknown> }>;
+  base: Record<string, unknown>[];
+  lens: Record<string, unknown>[];
+}
+
 /** The library `valid()` with `edit` applied to it. */
-function broken(edit: (doc: Record<string, any>) => void): Record<string, unknown> {
-  const doc = valid();
+function broken(edit: (doc: Doc) => void): Doc {
+  const doc = valid() as Doc;
   edit(doc);
   return doc;
 }
@@ -39,30 +47,30 @@ describe('parsePresetLibrary', () => {
     expect(lib.presets.raking?.light).toEqual([-0.95, 0.1]);
     expect(lib.lens[0]?.opacity).toBe(0.8);
     expect(libraryLayers(lib)).toEqual(['ptm', 'band_ir']);
-    expect(entryLayer(lib, lib.base[0]!)).toBe('ptm');
+    expect(entryLayer(lib, lib.base[0])).toBe('ptm');
   });
 
   it.each([
-    ['base[0].preset', (d: Record<string, any>) => { d.base[0].preset = 'nope'; }],
-    ['base[0].layer', (d: Record<string, any>) => { d.base[0].layer = 'band_ir'; }], // raking is colour: fine
-    ['presets.raking.layer', (d: Record<string, any>) => { d.presets.raking.layer = 'x'; }],
-    ['presets.ir.mode', (d: Record<string, any>) => { d.presets.ir.mode = 'specular'; }],
-    ['presets.raking.mode', (d: Record<string, any>) => { d.presets.raking.mode = 'glow'; }],
-    ['presets.raking.params.gamma', (d: Record<string, any>) => { d.presets.raking.params.gamma = 9; }],
-    ['presets.raking.params.shine', (d: Record<string, any>) => { d.presets.raking.params.shine = 1; }],
-    ['presets.raking.light', (d: Record<string, any>) => { d.presets.raking.light = [0.9, 0.9]; }],
-    ['presets.raking.view', (d: Record<string, any>) => { d.presets.raking.view = [1400, 0, 400, 10]; }],
-    ['lens[0].opacity', (d: Record<string, any>) => { d.lens[0].opacity = 2; }],
-    ['base[0].opacity', (d: Record<string, any>) => { d.base[0].opacity = 0.5; }],
-    ['presets.bad id', (d: Record<string, any>) => { d.presets['bad id'] = d.presets.ir; }],
-    ['version', (d: Record<string, any>) => { d.version = 2; }],
-    ['lens', (d: Record<string, any>) => { delete d.lens; }],
+    ['base[0].preset', (d: Doc) => { d.base[0].preset = 'nope'; }],
+    ['base[0].layer', (d: Doc) => { d.base[0].layer = 'band_ir'; }], // raking is colour: fine
+    ['presets.raking.layer', (d: Doc) => { d.presets.raking.layer = 'x'; }],
+    ['presets.ir.mode', (d: Doc) => { d.presets.ir.mode = 'specular'; }],
+    ['presets.raking.mode', (d: Doc) => { d.presets.raking.mode = 'glow'; }],
+    ['presets.raking.params.gamma', (d: Doc) => { d.presets.raking.params.gamma = 9; }],
+    ['presets.raking.params.shine', (d: Doc) => { d.presets.raking.params.shine = 1; }],
+    ['presets.raking.light', (d: Doc) => { d.presets.raking.light = [0.9, 0.9]; }],
+    ['presets.raking.view', (d: Doc) => { d.presets.raking.view = [1400, 0, 400, 10]; }],
+    ['lens[0].opacity', (d: Doc) => { d.lens[0].opacity = 2; }],
+    ['base[0].opacity', (d: Doc) => { d.base[0].opacity = 0.5; }],
+    ['presets.bad id', (d: Doc) => { d.presets['bad id'] = d.presets.ir!; }],
+    ['version', (d: Doc) => { d.version = 2; }],
+    ['lens', (d: Doc) => { delete (d as Record<string, unknown>).lens; }],
   ])('names %s', (path, edit) => {
     const doc = broken(edit);
     if (path === 'base[0].layer') {
       // a colour preset applies to the IR layer too; an entry pointing at a missing layer does not
       expect(() => parsePresetLibrary(doc, 'p.json', DATASET)).not.toThrow();
-      (doc.base as Record<string, unknown>[])[0]!.layer = 'missing';
+      doc.base[0].layer = 'missing';
     }
     expect(() => parsePresetLibrary(doc, 'p.json', DATASET)).toThrow(`p.json: ${path}: `);
   });
