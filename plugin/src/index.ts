@@ -50,3 +50,13 @@ export { lensHit, LENS_BORDER_PX, type Circle, type LensHit } from './math/lens'
 export { currentLevel } from './math/levels';
 export { parseOverlays, OVERLAY_SERVICE_TYPE, OVERLAY_PROFILE, type OverlayLevel } from './iiif/overlays';
 export type { OverlayState } from './overlay/overlay-controller';
+export { createMeasurement, type MeasurementWidget } from './measure/measure-widget';
+export { measureAt, imagePixelAt } from './measure/measure-at';
+export {
+  materialOf, plotOf, swatchOf, type Material, type Measurement, type MeasurementKind, type MeasurementPlot,
+} from './measure/plot-of';
+export { PlanePixels } from './measure/plane-pixels';
+export { dequantise } from './measure/dequantise';
+export { measurementCaption } from './measure/caption';
+export { brdfSlice, sliceAngles, toneMapSlice, wardLobe, SLICE_SIZE } from './math/brdf-slice';
+export { reflectanceDisk, diskLight, hshColor, ptmColor, DISK_SIZE } from './math/reflectance-disk';

@@ -30,14 +30,16 @@ const ALLOWED: Readonly<Record<string, readonly string[]>> = {
   api: ['errors', 'math', 'iiif', 'render', 'lens', 'overlay', 'ui', 'drawer'],
   panel: ['errors', 'math', 'iiif', 'render', 'lens', 'overlay', 'ui', 'api'],
   viewer: ['errors', 'math', 'iiif', 'render', 'layers', 'tiles', 'lens', 'overlay', 'ui', 'drawer', 'api', 'panel'],
+  // the measurement mode reads a viewer's planes through its public API
+  measure: ['errors', 'math', 'iiif', 'tiles', 'ui', 'api'],
   index: ['errors', 'math', 'iiif', 'render', 'gl', 'layers', 'tiles', 'lens', 'ui', 'overlay', 'drawer', 'api',
-    'panel', 'viewer'],
+    'panel', 'viewer', 'measure'],
   demo: ['index'],
 };
 
 /** The packages a part may import. */
 const PACKAGES: Readonly<Record<string, readonly string[]>> = {
-  openseadragon: ['tiles', 'lens', 'overlay', 'ui', 'drawer', 'api', 'viewer'],
+  openseadragon: ['tiles', 'lens', 'overlay', 'ui', 'drawer', 'api', 'viewer', 'measure'],
   'twgl.js': ['gl', 'layers', 'drawer'],
 };
 
