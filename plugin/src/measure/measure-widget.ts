@@ -25,6 +25,8 @@ export interface MeasurementWidget {
   measure(x: number, y: number): Promise<Measurement | null>;
   /** The measurement shown, if any. */
   current(): Measurement | null;
+  /** Resolves once the measurements the pointer asked for so far are shown. */
+  idle(): Promise<void>;
   /** The widget's element (hidden while nothing is shown). */
   readonly element: HTMLElement;
   destroy(): void;
@@ -62,16 +64,24 @@ function draw(canvas: HTMLCanvasElement, m: Measurement): void {
   context.drawImage(small, 0, 0, canvas.width, canvas.height);
   if (m.kind === 'reflectance-disk') {
     const p = diskPixelOf(m.light.lu, m.light.lv, canvas.width);
-    context.strokeStyle = '#ff3';
-    context.lineWidth = 2;
-    context.beginPath();
-    context.arc(p.x, p.y, 5, 0, 2 * Math.PI);
-    context.stroke();
+    // the current light: a white ring in a dark one, visible on any colour
+    for (const [style, width] of [['#000', 4], ['#fff', 2]] as const) {
+      context.strokeStyle = style;
+      context.lineWidth = width;
+      context.beginPath();
+      context.arc(p.x, p.y, 5, 0, 2 * Math.PI);
+      context.stroke();
+    }
   } else if (m.kind === 'brdf-slice') {
-    context.fillStyle = '#ff3';
+    // θh grows to the right, θd downwards (both 0–90°)
     context.font = '11px system-ui, sans-serif';
-    context.fillText('θh →', canvas.width - 34, 12);
-    context.fillText('θd ↓', 3, canvas.height - 4);
+    context.strokeStyle = '#000';
+    context.lineWidth = 3;
+    context.fillStyle = '#fff';
+    for (const [text, x, y] of [['θh →', canvas.width - 34, 12], ['θd ↓', 3, 28]] as const) {
+      context.strokeText(text, x, y);
+      context.fillText(text, x, y);
+    }
   }
 }
 
@@ -94,6 +104,7 @@ export function createMeasurement(lanterna: LanternaViewer, host: HTMLElement = 
   let previous: DragMode = 'light';
   let shown: Measurement | null = null;
   let busy = false;
+  let running: Promise<void> = Promise.resolve();
   let next: { x: number; y: number } | null = null;
   const touches = new Set<number>();
 
@@ -122,7 +133,7 @@ export function createMeasurement(lanterna: LanternaViewer, host: HTMLElement = 
       return;
     }
     busy = true;
-    void (async () => {
+    running = (async () => {
       while (next) {
         const p = next;
         next = null;
@@ -154,6 +165,12 @@ export function createMeasurement(lanterna: LanternaViewer, host: HTMLElement = 
       show(null, 0, 0);
     }
   };
+  // A measurement of another layer is stale.
+  const unsubscribe = lanterna.onChange(() => {
+    if (shown && shown.layer !== lanterna.getActiveLayer()) {
+      show(null, 0, 0);
+    }
+  });
   const listeners: [string, (ev: PointerEvent) => void][] = [['pointerdown', onDown], ['pointermove', onMove],
     ['pointerup', onUp], ['pointercancel', onUp], ['pointerleave', onLeave]];
   for (const [name, f] of listeners) {
@@ -180,7 +197,9 @@ export function createMeasurement(lanterna: LanternaViewer, host: HTMLElement = 
     isEnabled: () => enabled,
     measure,
     current: () => shown,
+    idle: () => running,
     destroy() {
+      unsubscribe();
       for (const [name, f] of listeners) {
         element.removeEventListener(name, f as EventListener, { capture: true });
       }
