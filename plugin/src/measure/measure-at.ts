@@ -7,7 +7,7 @@
 import OpenSeadragon from 'openseadragon';
 import type { LanternaViewer } from '../api/viewer-api';
 import type { LoadedLayer } from '../iiif/load';
-import type { PlanePixels } from './plane-pixels';
+import { PlanePixels } from './plane-pixels';
 import { plotOf, type Measurement } from './plot-of';
 
 /** The full-resolution image pixel under (x, y) CSS px of the viewer element, or null outside the image. */
@@ -21,15 +21,23 @@ export function imagePixelAt(lanterna: LanternaViewer, layer: LoadedLayer, x: nu
   return inside ? { x: ix, y: iy } : null;
 }
 
+let sharedPixels: PlanePixels | null = null;
+
 /**
  * Measure the active layer at (x, y) CSS px of the viewer element; null outside the image or
  * before the viewer is ready.
  *
- * @param pixels - the plane reader (its tile cache is shared by the measurements that use it)
+ * @example
+ * ```ts
+ * const m = await measureAt(lanterna, 200, 150);
+ * console.log(m?.values, m?.plot.width);
+ * ```
+ * @param pixels - the plane reader, whose decoded tiles are kept between measurements
+ *   @default one reader shared by every call without one
  * @throws a `FetchError` when a plane tile cannot be fetched or decoded
  */
-export async function measureAt(lanterna: LanternaViewer, pixels: PlanePixels, x: number, y: number):
-  Promise<Measurement | null> {
+export async function measureAt(lanterna: LanternaViewer, x: number, y: number,
+  pixels: PlanePixels = (sharedPixels ??= new PlanePixels())): Promise<Measurement | null> {
   const layer = lanterna.layer;
   const at = layer ? imagePixelAt(lanterna, layer, x, y) : null;
   if (!layer || !at) {

@@ -122,7 +122,7 @@ export function createMeasurement(lanterna: LanternaViewer, host: HTMLElement = 
     root.style.top = `${at.top}px`;
   };
   const measure = async (x: number, y: number): Promise<Measurement | null> => {
-    const m = await measureAt(lanterna, pixels, x, y);
+    const m = await measureAt(lanterna, x, y, pixels);
     show(m, x, y);
     return m;
   };
