@@ -58,3 +58,13 @@ export {
 export { parsePresetLibrary } from './presets/read-library';
 export { PresetIndexError } from './viewer/preset-actions';
 export { PHYSDIM_PROFILE, type LabelValue, type PhysicalScale, type PhysicalUnits } from './iiif/manifest';
+export { createMeasurement, type MeasurementWidget } from './measure/measure-widget';
+export { measureAt, imagePixelAt } from './measure/measure-at';
+export {
+  materialOf, plotOf, swatchOf, type Material, type Measurement, type MeasurementKind, type MeasurementPlot,
+} from './measure/plot-of';
+export { PlanePixels } from './measure/plane-pixels';
+export { dequantise } from './measure/dequantise';
+export { measurementCaption } from './measure/caption';
+export { brdfSlice, sliceAngles, toneMapSlice, wardLobe, SLICE_SIZE } from './math/brdf-slice';
+export { reflectanceDisk, diskLight, hshColor, ptmColor, DISK_SIZE } from './math/reflectance-disk';

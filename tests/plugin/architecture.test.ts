@@ -32,14 +32,16 @@ const ALLOWED: Readonly<Record<string, readonly string[]>> = {
   panel: ['errors', 'math', 'iiif', 'render', 'lens', 'overlay', 'ui', 'api', 'presets'],
   viewer: ['errors', 'math', 'iiif', 'render', 'layers', 'tiles', 'lens', 'overlay', 'ui', 'drawer', 'api', 'panel',
     'presets'],
+  // the measurement mode reads a viewer's planes through its public API
+  measure: ['errors', 'math', 'iiif', 'tiles', 'ui', 'api'],
   index: ['errors', 'math', 'iiif', 'render', 'gl', 'layers', 'tiles', 'lens', 'ui', 'overlay', 'drawer', 'api',
-    'panel', 'viewer', 'presets'],
+    'panel', 'viewer', 'presets', 'measure'],
   demo: ['index'],
 };
 
 /** The packages a part may import. */
 const PACKAGES: Readonly<Record<string, readonly string[]>> = {
-  openseadragon: ['tiles', 'lens', 'overlay', 'ui', 'drawer', 'api', 'viewer'],
+  openseadragon: ['tiles', 'lens', 'overlay', 'ui', 'drawer', 'api', 'viewer', 'measure'],
   'twgl.js': ['gl', 'layers', 'drawer'],
 };
 

@@ -119,6 +119,15 @@ def hsh_normals(coeffs: npt.ArrayLike) -> F32:
     return out
 
 
+def hsh_color(coeffs: F32, weights: npt.ArrayLike, intensity: float = 1.0) -> F32:
+    """The colour mode's unclamped ``c = Σ_k a_{c,k}·w_k·I`` of ``(..., 3, K)`` coefficients.
+
+    ``weights`` are one light's ``(K,)`` weights, or ``(..., K)`` per pixel.
+    """
+    w = np.asarray(weights, np.float32)[..., None, :]
+    return f32(np.sum(coeffs * w, axis=-1, dtype=np.float32) * np.float32(intensity))
+
+
 def hsh_surface(layer: Mapping[str, Any], channels: Mapping[str, F32]) -> Surface:
     """Build the :class:`~.shading.Surface` of an HSH layer from its dequantised channels."""
     a = hsh_coefficients(layer, channels)
@@ -126,8 +135,7 @@ def hsh_surface(layer: Mapping[str, Any], channels: Mapping[str, F32]) -> Surfac
     n = hsh_normals(a)
 
     def color(light: Light) -> F32:
-        w = hsh_weights(light.lu, light.lv, terms)
-        return f32(np.sum(a * w, axis=-1, dtype=np.float32) * np.float32(light.intensity))
+        return hsh_color(a, hsh_weights(light.lu, light.lv, terms), light.intensity)
 
     def specular(light: Light, p: Params) -> F32:
         s = np.power(clamp01(dot3(n, light.h)), np.float32(p["specExponent"] / 5.0))[..., None]

@@ -87,6 +87,25 @@ def evaluate(coeffs: F32, weights: F32) -> F32:
     return f32(np.sum(coeffs * weights, axis=-1, dtype=np.float32))
 
 
+def ptm_color(coeffs: F32, rgb: F32 | None, weights: F32, intensity: float = 1.0) -> F32:
+    """The colour mode's unclamped ``c``: lrgb ``rgb·L·I``, rgb ``Σ_k a_{c,k}·w_k·I``.
+
+    Parameters
+    ----------
+    coeffs:
+        ``(..., 6)`` luminance coefficients with ``rgb`` ``(..., 3)`` (lrgb), or ``(..., 3, 6)``
+        per-channel coefficients with ``rgb`` ``None``.
+    weights:
+        ``(6,)`` basis weights of one light, or ``(..., 6)`` per pixel (:func:`ptm_basis`).
+    intensity:
+        ``lightIntensity``.
+    """
+    li = np.float32(intensity)
+    if rgb is not None:
+        return (rgb * (evaluate(coeffs, weights) * li)[..., None]).astype(np.float32)
+    return (evaluate(coeffs, np.asarray(weights, np.float32)[..., None, :]) * li).astype(np.float32)
+
+
 def diffuse_gain_coefficients(a: F32, n: F32, gain: float) -> F32:
     """Malzbender's diffuse gain: curvature × ``gain``, value and slope at the normal kept.
 
@@ -121,11 +140,8 @@ def ptm_surface(layer: Mapping[str, Any], channels: Mapping[str, F32]) -> Surfac
 
     def relight(coeffs: F32, light: Light) -> F32:
         """Unclamped colour of coefficients ``coeffs`` (lrgb: luminance set × rgb)."""
-        w = ptm_basis(light.lu, light.lv)
-        li = np.float32(light.intensity)
-        if lrgb:
-            return (rgb * (evaluate(coeffs, w) * li)[..., None]).astype(np.float32)
-        return (evaluate(coeffs, w) * li).astype(np.float32)
+        return ptm_color(coeffs, rgb if lrgb else None, ptm_basis(light.lu, light.lv),
+                         light.intensity)
 
     def color(light: Light) -> F32:
         return relight(a, light)

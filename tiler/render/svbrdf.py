@@ -7,9 +7,11 @@ a layer without a normal map is a pure image (docs/rendering.md).
 from __future__ import annotations
 
 from collections.abc import Mapping
+from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
+import numpy.typing as npt
 
 from .shading import (
     F32,
@@ -52,46 +54,80 @@ def ward(n: F32, kd: F32, ks: F32, alpha: F32, light: Light) -> F32:
     """
     cosi = np.maximum(np.float32(0), dot3(n, light.direction))
     cosr = np.maximum(n[..., 2], np.float32(1e-4))
-    nh = np.maximum(dot3(n, light.h), np.float32(1e-4))
-    tan2 = (np.float32(1) - nh * nh) / (nh * nh)
-    a2 = f32(alpha) * f32(alpha)
-    spec = np.exp(-tan2 / a2) * np.sqrt(cosi / cosr) / (np.float32(4) * a2)
+    spec = ward_lobe(dot3(n, light.h), alpha) * np.sqrt(cosi / cosr)
     return f32(kd * cosi[..., None] + ks * spec[..., None])
 
 
-def svbrdf_surface(layer: Mapping[str, Any], channels: Mapping[str, F32]) -> Surface:
-    """Build the :class:`~.shading.Surface` of a shape + material layer (any subset of maps)."""
+def ward_lobe(nh: npt.ArrayLike, alpha: npt.ArrayLike) -> F32:
+    """Ward's specular lobe ``exp(−tan²θh/α²)/(4α²)`` of ``nh = n·h`` (clamped to ``≥ 1e-4``).
+
+    The BRDF is ``π·f = kd + ks·lobe/√(cosθi·cosθo)`` (E = π); :func:`ward` multiplies it by
+    ``cosθi``, the BRDF slice (:mod:`.measure`) plots it.
+    """
+    c = np.maximum(f32(nh), np.float32(1e-4))
+    tan2 = (np.float32(1) - c * c) / (c * c)
+    a2 = f32(alpha) * f32(alpha)
+    return f32(np.exp(-tan2 / a2) / (np.float32(4) * a2))
+
+
+@dataclass(frozen=True)
+class Material:
+    """The linear Lambert + Ward parameters of a shape + material layer, per pixel.
+
+    ``n`` ``(H, W, 3)`` unit normals, ``kd`` and ``ks`` ``(H, W, 3)`` linear (display values for
+    ``inputColorSpace: "display"``), ``alpha`` ``(H, W)``; missing maps take the contract's
+    defaults.
+    """
+
+    n: F32
+    kd: F32
+    ks: F32
+    alpha: F32
+
+
+def svbrdf_material(layer: Mapping[str, Any], channels: Mapping[str, F32]) -> Material | None:
+    """The :class:`Material` of a shape + material layer, ``None`` without a normal map."""
+    normal = _group(channels, ("NX", "NY", "NZ"))
+    if normal is None:
+        return None
     lo, hi = (float(v) for v in layer.get("glossLimits", (0.01, 0.5)))
-    space = layer.get("inputColorSpace", "linear")
-    srgb_in = space == "srgb"
-    display = space == "display"  # maps and shading in display values: no decode, no encode
+    srgb_in = layer.get("inputColorSpace", "linear") == "srgb"
     stored_kd = _group(channels, ("KD_R", "KD_G", "KD_B"))
 
     def linear(x: F32) -> F32:
         return srgb_to_linear(x) if srgb_in else x
 
+    n = normalize(normal)
+    one = np.ones(n.shape, np.float32)
+    if stored_kd is None:
+        return Material(n, one * DEFAULT_KD, one * DEFAULT_KS, one[..., 0] * DEFAULT_ALPHA)
+    stored_ks = _group(channels, ("KS_R", "KS_G", "KS_B"))
+    ks = one * np.float32(0) if stored_ks is None else linear(stored_ks)
+    gloss = channels.get("GLOSS")
+    alpha = (one[..., 0] * np.float32((lo + hi) / 2) if gloss is None
+             else f32(np.float32(lo) + gloss * np.float32(hi - lo)))
+    return Material(n, linear(stored_kd), ks, alpha)
+
+
+def svbrdf_surface(layer: Mapping[str, Any], channels: Mapping[str, F32]) -> Surface:
+    """Build the :class:`~.shading.Surface` of a shape + material layer (any subset of maps)."""
+    space = layer.get("inputColorSpace", "linear")
+    srgb_in = space == "srgb"
+    display = space == "display"  # maps and shading in display values: no decode, no encode
+
     def encode(x: F32) -> F32:
         return x if display else linear_to_srgb(x)
 
-    normal = _group(channels, ("NX", "NY", "NZ"))
-    if normal is None:  # a pure image: kd as displayed, no light
+    material = svbrdf_material(layer, channels)
+    if material is None:  # a pure image: kd as displayed, no light
+        stored_kd = _group(channels, ("KD_R", "KD_G", "KD_B"))
         if stored_kd is None:
             shape = next(iter(channels.values())).shape
             disp = np.full(shape + (3,), linear_to_srgb(f32(DEFAULT_KD)), np.float32)
         else:
             disp = stored_kd if srgb_in or display else linear_to_srgb(stored_kd)
         return Surface(color=lambda light: disp, normal=None, albedo=disp)
-    n = normalize(normal)
-    one = np.ones(n.shape, np.float32)
-    if stored_kd is None:
-        kd, ks, alpha = one * DEFAULT_KD, one * DEFAULT_KS, one[..., 0] * DEFAULT_ALPHA
-    else:
-        kd = linear(stored_kd)
-        stored_ks = _group(channels, ("KS_R", "KS_G", "KS_B"))
-        ks = one * np.float32(0) if stored_ks is None else linear(stored_ks)
-        gloss = channels.get("GLOSS")
-        alpha = (one[..., 0] * np.float32((lo + hi) / 2) if gloss is None
-                 else f32(np.float32(lo) + gloss * np.float32(hi - lo)))
+    n, kd, ks, alpha = material.n, material.kd, material.ks, material.alpha
 
     def color(light: Light) -> F32:
         return encode(clamp01(ward(n, kd, ks, alpha, light) * np.float32(light.intensity)))

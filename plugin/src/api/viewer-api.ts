@@ -104,7 +104,10 @@ export interface LanternaViewer {
   setLight(lu: number, lv: number): void;
   /** The current light. */
   getLight(): Light;
-  /** Set what a plain drag does. */
+  /**
+   * Set what a plain drag does: `light`, `pan`, or `measure` (neither: the measurement widget,
+   * `createMeasurement`, follows the pointer).
+   */
   setMode(mode: DragMode): void;
   /** What a plain drag does. */
   getMode(): DragMode;

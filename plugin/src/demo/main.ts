@@ -1,15 +1,21 @@
 /**
- * The viewer page: `index.html?manifest=URL[&layer=ID][&mode=MODE][&wholeLevelMaxSide=PX]`. Exposes the viewer as
- * `window.lanterna`. Test-only: `&minPixelRatio=R` sets OpenSeadragon's `minPixelRatio` (the page
+ * The viewer page: `index.html?manifest=URL[&layer=ID][&mode=MODE][&wholeLevelMaxSide=PX][&measure=1]`. Exposes
+ * the viewer as `window.lanterna` and its measurement widget as `window.lanternaMeasure` (`&measure=1`: on at
+ * start). Test-only: `&minPixelRatio=R` sets OpenSeadragon's `minPixelRatio` (the page
  * shows full detail otherwise; the browser tests pass 0.75 to get exact levels, tests/browser/render.mjs). A dataset that cannot be opened gives a message in the page (`#error`); errors
  * after that (switching layers, the lens) show as notices over the viewer.
  */
-import { createControls, createLensControls, createViewer, type LanternaViewer, type RenderMode } from '../index';
+import {
+  createControls, createLensControls, createMeasurement, createViewer, type LanternaViewer, type MeasurementWidget,
+  type RenderMode,
+} from '../index';
 import { describeOpenError, showErrorBox } from './error-page';
 
 declare global {
   interface Window {
     lanterna?: LanternaViewer;
+    /** The measurement widget (`&measure=1` turns it on at start). */
+    lanternaMeasure?: MeasurementWidget;
   }
 }
 
@@ -35,7 +41,7 @@ function showFatal(error: unknown, manifestUrl: string | null): void {
 
 /** Open the viewer on `manifest` and wire the page's controls to it. */
 function open(manifest: string, layer: string | undefined, mode: string | null, wholeLevelMaxSide: number | undefined,
-  minPixelRatio: number | null): void {
+  minPixelRatio: number | null, measure: boolean): void {
   let lanterna: LanternaViewer;
   try {
     lanterna = createViewer({
@@ -47,6 +53,8 @@ function open(manifest: string, layer: string | undefined, mode: string | null, 
     return;
   }
   window.lanterna = lanterna;
+  const measurement = createMeasurement(lanterna);
+  window.lanternaMeasure = measurement;
   /** Run an action of a control; its errors become notices over the viewer. */
   const attempt = (action: () => unknown): void => {
     try {
@@ -95,6 +103,7 @@ function open(manifest: string, layer: string | undefined, mode: string | null, 
     if (mode !== null) {
       attempt(() => { lanterna.setRenderMode(mode as RenderMode); }); // RenderModeError for an unknown mode
     }
+    measurement.setEnabled(measure);
     if (panel) {
       createControls(lanterna, panel, report);
       createLensControls(lanterna, panel, report);
@@ -125,6 +134,6 @@ if (!manifestParam) {
     const side = Number(params.get('wholeLevelMaxSide') ?? Number.NaN);
     const ratio = Number(params.get('minPixelRatio') ?? Number.NaN);
     open(manifest, params.get('layer') ?? undefined, params.get('mode'), Number.isFinite(side) ? side : undefined,
-      Number.isFinite(ratio) && ratio > 0 ? ratio : null);
+      Number.isFinite(ratio) && ratio > 0 ? ratio : null, params.get('measure') === '1');
   }
 }

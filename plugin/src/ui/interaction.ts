@@ -1,12 +1,16 @@
 /**
  * Pointer interaction on the viewer: a plain drag moves the light (or pans, in pan mode),
- * Shift+drag does the other; right- or middle-drag always pans; wheel and pinch zoom (OSD default).
+ * Shift+drag does the other; in measure mode a primary drag does neither; right- or middle-drag
+ * always pans; wheel and pinch zoom (OSD default).
  */
 import OpenSeadragon from 'openseadragon';
 import { lightFromPointer, type Light } from '../math/light';
 
-/** What a plain primary-button (or one-finger) drag does. */
-export type DragMode = 'light' | 'pan';
+/**
+ * What a plain primary-button (or one-finger) drag does: move the light, pan, or nothing (`measure`:
+ * the measurement widget follows the pointer, measure/measure-widget.ts).
+ */
+export type DragMode = 'light' | 'pan' | 'measure';
 
 /** Options of {@link attachInteraction}. */
 export interface InteractionOptions {
@@ -39,7 +43,8 @@ export function attachInteraction(viewer: OpenSeadragon.Viewer, options: Interac
   const light = (e: PointerEventArgs): void => {
     options.setLight(lightFromPointer(e.position.x, e.position.y, element.clientWidth, element.clientHeight));
   };
-  const claimed = (): boolean => options.claimed?.() ?? false;
+  // In measure mode a primary drag is the measurement's, as a lens gesture is the lens's.
+  const claimed = (): boolean => options.getMode() === 'measure' || (options.claimed?.() ?? false);
   const onPress = (e: PointerEventArgs): void => {
     if (claimed()) {
       lightDrag = false;
