@@ -4,7 +4,9 @@
   Manifest, ``{"id": "{dataset url}/presets.json", "type": "LanternaPresets", "profile":
   "urn:lanterna:presets:1", "version": 1, "presets": {…}, "base": […], "lens": […]}``: the library
   document with an ``id`` (the same library is written as that file) and a ``profile``, so a
-  static export of the manifest keeps it.
+  static export of the manifest keeps it. The library's optional ``label`` (a plain string,
+  where Presentation 3 wants a language map on every resource) stays out of the block;
+  ``presets.json`` keeps it.
 - :func:`physdim_service`: the IIIF Physical Dimensions service (the IIIF services annex) on the
   Canvas when the pixel size is known: ``physicalScale`` millimetres per canvas pixel. The annex
   defines ``@context``, ``profile``, ``physicalScale`` and ``physicalUnits``; Presentation 3
@@ -29,7 +31,7 @@ def presets_service(desc: dict[str, Any], ds_url: str) -> dict[str, Any] | None:
     if not library:
         return None
     return {"id": f"{ds_url}/presets.json", "type": library["type"], "profile": PRESETS_PROFILE,
-            **{k: copy.deepcopy(v) for k, v in library.items() if k != "type"}}
+            **{k: copy.deepcopy(v) for k, v in library.items() if k not in ("type", "label")}}
 
 
 def physdim_service(desc: dict[str, Any], ds_url: str) -> dict[str, Any] | None:
