@@ -118,7 +118,7 @@ def _check_mode(mode: str, layer: str, layers: Mapping[str, Mapping[str, Any]], 
         raise PresetError(source, f"{where}: layer {layer!r} has no render modes "
                                  "(unknown layer type)") from None
     if mode not in modes:
-        whose = f"preset {preset!r}'s mode " if preset else "mode "
-        raise PresetError(source, f"{where}: {whose}{mode!r} does not apply to layer "
+        whose = f"the mode {mode!r} of preset {preset!r}" if preset else f"mode {mode!r}"
+        raise PresetError(source, f"{where}: {whose} does not apply to layer "
                                  f"{layer!r} ({layers[layer].get('layerType')}; modes: "
                                  f"{', '.join(modes)})")
