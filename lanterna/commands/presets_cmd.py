@@ -19,18 +19,22 @@ _ADD = """\
       --mode color --param gamma=1.4 --lens "Infrared underdrawing" --opacity 0.9
       a preset shown in the lens, listed in the lens menu
 """
-_OTHERS = """\
-  lanterna presets list datasets/demo               the presets, then the base and lens lists
-  lanterna presets remove datasets/demo raking-w    a preset and the entries that use it
-  lanterna presets export datasets/demo -o demo-presets.json
-  lanterna presets import datasets/obj demo-presets.json --merge
-      add a library file's presets and entries (--replace, the default, replaces the library)
-"""
+_ACTIONS = {
+    "list": "  lanterna presets list datasets/demo             the presets, then the base and lens "
+            "lists\n",
+    "remove": "  lanterna presets remove datasets/demo raking-w  a preset and the entries that use "
+              "it\n",
+    "export": "  lanterna presets export datasets/demo -o demo-presets.json\n"
+              "      the library as a file, to edit or to import into another dataset\n",
+    "import": "  lanterna presets import datasets/obj demo-presets.json --merge\n"
+              "      add a library file's presets and entries (--replace, the default, replaces "
+              "the library)\n",
+}
 _NOTE = """
 The library is checked against the dataset (layer ids, the modes of each layer, light, view)
 and the dataset is rewritten atomically: a bad library changes nothing. Format: docs/presets.md.
 """
-PRESETS_EXAMPLES = "examples:\n" + _ADD + _OTHERS + _NOTE
+PRESETS_EXAMPLES = "examples:\n" + _ADD + "".join(_ACTIONS.values()) + _NOTE
 ADD_EXAMPLES = "examples:\n" + _ADD + _NOTE
 
 
@@ -59,21 +63,25 @@ def register(sub: SubParsers) -> None:
     add.add_argument("--replace", action="store_true", help="replace a preset of the same id")
     add.set_defaults(func=run_add)
 
-    lst = actions.add_parser("list", help="show the presets and the base and lens lists")
+    def action(name: str, text: str) -> argparse.ArgumentParser:
+        return actions.add_parser(name, help=text, epilog="examples:\n" + _ACTIONS[name],
+                                  formatter_class=fmt)
+
+    lst = action("list", "show the presets and the base and lens lists")
     _dataset(lst)
     lst.set_defaults(func=run_list)
 
-    rm = actions.add_parser("remove", help="remove a preset and the entries that use it")
+    rm = action("remove", "remove a preset and the entries that use it")
     _dataset(rm)
     rm.add_argument("preset_id", metavar="ID", help="preset id")
     rm.set_defaults(func=run_remove)
 
-    exp = actions.add_parser("export", help="write the library as a JSON file")
+    exp = action("export", "write the library as a JSON file")
     _dataset(exp)
     exp.add_argument("-o", "--output", type=Path, required=True, metavar="FILE")
     exp.set_defaults(func=run_export)
 
-    imp = actions.add_parser("import", help="store a library file in the dataset")
+    imp = action("import", "check a library file against the dataset and store it")
     _dataset(imp)
     imp.add_argument("file", type=Path, metavar="FILE", help="a preset library (.json)")
     how = imp.add_mutually_exclusive_group()
@@ -102,7 +110,8 @@ def preset_from_args(args: argparse.Namespace) -> dict[str, Any]:
     if args.light is not None:
         preset["light"] = _numbers(args.light, 2, "--light", "LU,LV")
     if args.view is not None:
-        preset["view"] = _numbers(args.view, 4, "--view", "X,Y,W,H")
+        preset["view"] = [int(v) if v.is_integer() else v
+                          for v in _numbers(args.view, 4, "--view", "X,Y,W,H")]
     return preset
 
 
