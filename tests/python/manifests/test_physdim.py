@@ -14,8 +14,8 @@ from lanterna.cli import main
 from lanterna.manifests.build import build_manifest
 from lanterna.manifests.extensions import PHYSDIM_PROFILE
 from lanterna.manifests.validate import validate_manifest
-from tests.python.formats.test_relight_web import info_json, random_planes, write_folder
 from tests.python.fixtures.presets import read_json
+from tests.python.formats.test_relight_web import info_json, random_planes, write_folder
 
 
 @pytest.fixture
