@@ -71,12 +71,12 @@ def check_library(doc: Any, desc: Mapping[str, Any],
             lu, lv = preset["light"]
             if lu * lu + lv * lv > 1 + LIGHT_SLACK:
                 raise PresetError(source, f"{where}.light: [{lu}, {lv}] is outside the "
-                                         "unit disk (lu² + lv² must be at most 1)")
+                                  "unit disk (lu² + lv² must be at most 1)")
         if "view" in preset:
             x, y, w, h = preset["view"]
             if x < 0 or y < 0 or x + w > width or y + h > height:
                 raise PresetError(source, f"{where}.view: [{x}, {y}, {w}, {h}] is not "
-                                         f"within the image ({int(width)}×{int(height)})")
+                                  f"within the image ({int(width)}×{int(height)})")
     for name in LISTS:
         for i, entry in enumerate(library[name]):
             where = f"{name}[{i}]"
@@ -84,7 +84,7 @@ def check_library(doc: Any, desc: Mapping[str, Any],
             if preset is None:
                 known = ", ".join(sorted(library["presets"])) or "none"
                 raise PresetError(source, f"{where}.preset: no preset "
-                                         f"{entry['preset']!r} (presets: {known})")
+                                  f"{entry['preset']!r} (presets: {known})")
             layer = entry.get("layer", preset["layer"])
             _check_layer(layer, layers, f"{where}.layer", source)
             _check_mode(preset["mode"], layer, layers, f"{where}.layer", source,
@@ -97,17 +97,12 @@ def layer_services(desc: Mapping[str, Any]) -> dict[str, Mapping[str, Any]]:
     return {str(layer["id"]): layer.get("service", {}) for layer in desc.get("layers", [])}
 
 
-def preset_count(library: Mapping[str, Any]) -> int:
-    """How many presets a library holds."""
-    return len(library.get("presets", {}))
-
-
 def _check_layer(layer: str, layers: Mapping[str, Any], where: str,
                  source: str | Path | None) -> None:
     if layer not in layers:
         shown = ", ".join(list(layers)[:8]) + (", …" if len(layers) > 8 else "")
         raise PresetError(source, f"{where}: no layer {layer!r} in the dataset "
-                                 f"(layers: {shown})")
+                          f"(layers: {shown})")
 
 
 def _check_mode(mode: str, layer: str, layers: Mapping[str, Mapping[str, Any]], where: str,
@@ -116,9 +111,9 @@ def _check_mode(mode: str, layer: str, layers: Mapping[str, Mapping[str, Any]], 
         modes = applicable_modes(layers[layer])
     except ValueError:
         raise PresetError(source, f"{where}: layer {layer!r} has no render modes "
-                                 "(unknown layer type)") from None
+                          "(unknown layer type)") from None
     if mode not in modes:
         whose = f"the mode {mode!r} of preset {preset!r}" if preset else f"mode {mode!r}"
         raise PresetError(source, f"{where}: {whose} does not apply to layer "
-                                 f"{layer!r} ({layers[layer].get('layerType')}; modes: "
-                                 f"{', '.join(modes)})")
+                          f"{layer!r} ({layers[layer].get('layerType')}; modes: "
+                          f"{', '.join(modes)})")
