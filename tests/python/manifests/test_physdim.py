@@ -14,6 +14,12 @@ from lanterna.cli import main
 from lanterna.manifests.build import build_manifest
 from lanterna.manifests.extensions import PHYSDIM_PROFILE
 from lanterna.manifests.validate import validate_manifest
+from tests.python.fixtures.photos import (
+    bumpy_normals,
+    render_bumpy,
+    spiral_lights,
+    write_collection,
+)
 from tests.python.fixtures.presets import read_json
 from tests.python.formats.test_relight_web import info_json, random_planes, write_folder
 
@@ -104,3 +110,14 @@ def test_the_service_passes_the_schema_beside_presets_and_overlays() -> None:
     manifest = build_manifest(desc)  # raises if the schema refuses it
     assert manifest["items"][0]["service"][0]["physicalScale"] == 0.5
     assert manifest["service"][0]["id"] == "https://example.org/d/x/presets.json"
+
+
+def test_fit_takes_a_pixel_size_too(tmp_path: Path) -> None:
+    lights = spiral_lights()
+    lp = write_collection(tmp_path / "shots", render_bumpy(bumpy_normals(), lights), lights,
+                          depth=8)
+    out = tmp_path / "ds"
+    assert main(["fit", str(tmp_path / "shots"), "--lp", str(lp), "--model", "ptm", "--quiet",
+                 "--pixel-size", "0.2", "-o", str(out)]) == 0
+    assert read_json(out / "lanterna.json")["pixelSizeMM"] == 0.2
+    assert _physdim(out)[0]["physicalScale"] == 0.2
