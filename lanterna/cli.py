@@ -1,11 +1,18 @@
-"""The ``lanterna`` command line: import, fit, annotate, serve, demo."""
+"""The ``lanterna`` command line: import, fit, annotate, presets, serve, demo, export."""
 
 from __future__ import annotations
 
 import argparse
 import sys
 
-from lanterna.commands import annotate_cmd, export_cmd, fit_cmd, import_cmd, serve_cmd
+from lanterna.commands import (
+    annotate_cmd,
+    export_cmd,
+    fit_cmd,
+    import_cmd,
+    presets_cmd,
+    serve_cmd,
+)
 from lanterna.errors import LanternaInputError
 from lanterna.tiler.limits import set_max_pixels
 
@@ -47,6 +54,7 @@ def _parser() -> argparse.ArgumentParser:
     import_cmd.register(sub)
     fit_cmd.register(sub)
     annotate_cmd.register(sub)
+    presets_cmd.register(sub)
     serve_cmd.register(sub)
     export_cmd.register(sub)
     return parser

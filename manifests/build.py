@@ -6,7 +6,9 @@ colour image) with two services: the ``ImageService3`` of that image and the lay
 ``LanternaRelight`` block, so any IIIF viewer shows the colour image and Lanterna relights it.
 Every image service embeds its image's description (size, tiles, sizes), so a viewer needs no
 ``info.json`` before the first tile (:mod:`lanterna.manifests.services`).
-Layers with an overlay add ``canvas.annotations`` (:mod:`lanterna.manifests.overlays`).
+Layers with an overlay add ``canvas.annotations`` (:mod:`lanterna.manifests.overlays`); the
+preset library is a service on the Manifest and the pixel size a physdim service on the Canvas
+(:mod:`lanterna.manifests.extensions`).
 
 Every manifest built here is checked against the official IIIF Presentation 3.0 JSON Schema
 (:mod:`lanterna.manifests.validate`, a few milliseconds) before it is written, so an import never
@@ -30,6 +32,7 @@ from iiif_prezi3 import (
 
 from lanterna.errors import LanternaInputError
 
+from .extensions import physdim_service, presets_service
 from .overlays import overlay_pages
 from .services import image_service, with_plane_descriptions
 from .validate import validate_manifest
@@ -78,6 +81,11 @@ def build_manifest(desc: dict[str, Any],
     pages = overlay_pages(desc, infos)
     if pages:
         doc["items"][0]["annotations"] = pages
+    presets, physdim = presets_service(desc, ds_url), physdim_service(desc, ds_url)
+    if presets is not None:
+        doc["service"] = [presets]
+    if physdim is not None:
+        doc["items"][0]["service"] = [physdim]
     errors = validate_manifest(doc)
     if errors:
         more = f" (and {len(errors) - 1} more)" if len(errors) > 1 else ""

@@ -4,8 +4,9 @@
 :func:`~lanterna.server.safe_path.contained_file` has resolved them (symlinks included) inside
 the data root, and JSON documents get the dataset's recorded ``baseUrl`` rewritten to the URL of
 the request, so every IIIF ``id`` matches the URL it was fetched from. The level-1 image server
-over pyramidal TIFFs lives in :mod:`lanterna.server.image_api` (``/iiif/3/…``); errors are short
-plain text (:mod:`lanterna.server.errors`).
+over pyramidal TIFFs lives in :mod:`lanterna.server.image_api` (``/iiif/3/…``), the authoring
+API in :mod:`lanterna.server.api` (``/api/…``); errors are short plain text
+(:mod:`lanterna.server.errors`).
 """
 
 from __future__ import annotations
@@ -22,7 +23,7 @@ from werkzeug.wrappers import Response as BaseResponse
 
 from lanterna.tiler.iiif.spec import IMAGE_CONTEXT, PRESENTATION_CONTEXT
 
-from . import image_api
+from . import api, image_api
 from .errors import plain_error, register_error_handlers
 from .safe_path import contained_dir, contained_file, raw_path_is_safe
 
@@ -45,8 +46,9 @@ def create_app(config: dict[str, Any] | None = None) -> Flask:
     """Create the app.
 
     Config keys: ``DATA_ROOT`` (folder of datasets, required), ``VIEWER_DIR`` (the built viewer
-    page, default :func:`default_viewer`), and the image server's ``IIIF_*``
-    limits (:data:`lanterna.server.image_api.DEFAULTS`, docs/serving.md).
+    page, default :func:`default_viewer`), the image server's ``IIIF_*``
+    limits (:data:`lanterna.server.image_api.DEFAULTS`, docs/serving.md), and
+    ``AUTHORING_TOKEN`` (the authoring API's token, :mod:`lanterna.server.api`; None: read-only).
     """
     app = Flask(__name__)
     app.url_map.merge_slashes = False  # "//x" is a bad path (404), not a redirect to "/x"
@@ -58,6 +60,7 @@ def create_app(config: dict[str, Any] | None = None) -> Flask:
     app.config["DATA_ROOT"] = str(root)
     register_error_handlers(app)
     image_api.init_app(app)
+    api.init_app(app)
 
     @app.before_request
     def refuse_hidden_separators() -> None:
@@ -67,6 +70,8 @@ def create_app(config: dict[str, Any] | None = None) -> Flask:
 
     @app.after_request
     def cors(resp: Response) -> Response:
+        if request.path.startswith("/api/") and request.method not in ("GET", "HEAD"):
+            return resp  # writes are same-origin only: no CORS for them, preflights included
         resp.headers["Access-Control-Allow-Origin"] = "*"
         if request.method == "OPTIONS":
             resp.headers["Access-Control-Allow-Methods"] = "GET, HEAD, OPTIONS"

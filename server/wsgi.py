@@ -30,17 +30,20 @@ from flask import Flask
 from gunicorn.app.base import BaseApplication
 
 from .app import create_app
+from .auth import authoring_token
 
 #: Threads per gthread worker (``--threads``).
 DEFAULT_THREADS = 8
 
 
 def app_from_env() -> Flask:
-    """Create the app for the data root in ``LANTERNA_DATA_ROOT`` (a WSGI app factory)."""
+    """Create the app for the data root in ``LANTERNA_DATA_ROOT`` (a WSGI app factory), with
+    the authoring token of ``LANTERNA_AUTHORING_TOKEN`` if set (:mod:`.auth`)."""
     root = os.environ.get("LANTERNA_DATA_ROOT")
     if not root:
         raise RuntimeError("set LANTERNA_DATA_ROOT to the folder of datasets")
-    return create_app({"DATA_ROOT": root})
+    return create_app({"DATA_ROOT": root,
+                       "AUTHORING_TOKEN": authoring_token(None, os.environ)})
 
 
 def gunicorn_settings(host: str, port: int, workers: int,
@@ -95,8 +98,9 @@ def run_gunicorn(root: Path, listener: socket.socket, workers: int,
 
     ``listener`` is bound and listening already (:func:`lanterna.server.local.listen`); gunicorn
     takes it over. ``config`` adds app settings (e.g. the ``IIIF_*`` limits); ``access_log``
-    logs every request to stdout. Does not return normally: gunicorn's arbiter exits the process
-    when it stops.
+    logs every request to stdout. The app (its config, the authoring token included) is made
+    here, before gunicorn forks its workers, which inherit it. Does not return normally:
+    gunicorn's arbiter exits the process when it stops.
     """
     app = create_app({**(config or {}), "DATA_ROOT": root})
     host, port = listener.getsockname()[:2]

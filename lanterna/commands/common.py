@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import argparse
+import math
 from pathlib import Path
 from typing import TypeAlias
 
@@ -29,6 +30,10 @@ def dataset_args(p: argparse.ArgumentParser, *, label_default: str) -> None:
     p.add_argument("--plane-format", default="auto", metavar="auto|png|webp|jpg[:Q]",
                    help="tile format of relightable layers' planes (default auto: by source, "
                         "lossy sources within a stated error bound; docs/dataset-format.md)")
+    p.add_argument("--pixel-size", type=_pixel_size, default=None, metavar="MM",
+                   help="the physical size of one pixel on the object, in millimetres (a scale "
+                        "bar in the viewers; default: a Relight source's pixelSizeInMM, else "
+                        "none)")
     max_pixels_arg(p)
 
 
@@ -52,6 +57,16 @@ def serve_args(p: argparse.ArgumentParser) -> None:
     p.add_argument("--port", type=_port, default=8000, help="port (default 8000; 0: any free one)")
     p.add_argument("-v", "--verbose", action="store_true",
                    help="log every request, one line each (errors are always logged)")
+
+
+def _pixel_size(text: str) -> float:
+    try:
+        mm = float(text)
+    except ValueError:
+        mm = -1.0
+    if not (math.isfinite(mm) and mm > 0):
+        raise argparse.ArgumentTypeError(f"not a positive number of millimetres: {text!r}")
+    return mm
 
 
 def _port(text: str) -> int:

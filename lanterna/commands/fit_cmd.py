@@ -101,6 +101,6 @@ def run(args: argparse.Namespace) -> int:
              tile_size=args.tile_size, force=args.force, band_rows=args.band_rows,
              tiff=args.tiff, scratch=args.scratch, fit_space=args.fit_space,
              scheduler=args.scheduler, plane_format=plane_format, report=print,
-             progress=None if args.quiet else Progress)
+             progress=None if args.quiet else Progress, pixel_size_mm=args.pixel_size)
     print_written(args.output)
     return 0

@@ -23,6 +23,8 @@ IMPORT_EXAMPLES = """examples:
       also a pyramidal TIFF per image, for the IIIF image server at /iiif/3/
   lanterna import vase.rti --plane-format png -o datasets/vase
       PNG plane tiles (default auto: chosen by source, docs/dataset-format.md)
+  lanterna import tablet.ptm --pixel-size 0.05 -o datasets/tablet
+      one pixel is 0.05 mm on the object: the viewers show a scale bar
 
 Every source type and the description file: docs/importing.md.
 """
@@ -61,6 +63,6 @@ def run(args: argparse.Namespace) -> int:
     out = import_sources(args.sources, args.output, name=args.name, label=args.label,
                          bands=bands, fusions=fusions, base_url=args.base_url,
                          tile_size=args.tile_size, force=args.force, tiff=args.tiff,
-                         plane_format=plane_format)
+                         plane_format=plane_format, pixel_size_mm=args.pixel_size)
     print_written(out)
     return 0

@@ -11,6 +11,7 @@ from __future__ import annotations
 import argparse
 import errno
 import ipaddress
+import os
 import socket
 import sys
 from pathlib import Path
@@ -27,6 +28,9 @@ SERVE_EXAMPLES = """examples:
   lanterna serve datasets/ --host 0.0.0.0 --workers 4
       gunicorn with 4 worker processes, for several users on the network (docs/deploy.md)
   lanterna serve datasets/ --max-size 4096     cap the output of the IIIF image server at /iiif/3/
+  lanterna serve datasets/ --authoring-token-file ~/.lanterna-token
+      let the advanced viewer save presets into the datasets (PUT /api/…, docs/serving.md);
+      or set LANTERNA_AUTHORING_TOKEN in the environment. Never put the token on the command line.
 
 Without --workers the server is Werkzeug's (one process, a thread per connection): right for one
 person on this machine, not for several users or a public address.
@@ -70,10 +74,15 @@ def _worker_args(p: argparse.ArgumentParser) -> None:
                         "most 16383, the largest side WebP can encode)")
     p.add_argument("--max-area", type=float, default=None, metavar="MPX",
                    help="IIIF image server: largest output area in megapixels (default 16.8)")
+    p.add_argument("--authoring-token-file", type=Path, default=None, metavar="FILE",
+                   help="enable the authoring API (saving presets): its token is the first line "
+                        "of FILE, at least 16 characters (default: $LANTERNA_AUTHORING_TOKEN, "
+                        "else read-only)")
 
 
 def _limits(args: argparse.Namespace) -> dict[str, object]:
-    """The IIIF image server's output limits given on the command line (docs/serving.md)."""
+    """The app settings given on the command line: the IIIF image server's output limits, the
+    authoring token (docs/serving.md)."""
     config: dict[str, object] = {}
     size, area = getattr(args, "max_size", None), getattr(args, "max_area", None)
     if size is not None:
@@ -88,6 +97,10 @@ def _limits(args: argparse.Namespace) -> dict[str, object]:
         if area <= 0:
             raise LanternaInputError(None, "--max-area must be positive")
         config["IIIF_MAX_AREA"] = int(area * 1e6)
+    from lanterna.server.auth import authoring_token
+
+    config["AUTHORING_TOKEN"] = authoring_token(getattr(args, "authoring_token_file", None),
+                                                os.environ)
     return config
 
 
@@ -178,6 +191,7 @@ def _serve(args: argparse.Namespace, command: str, listener: socket.socket, root
 
     threads = args.threads or DEFAULT_THREADS
     _print_urls(args, listener.getsockname(), root, threads)
+    print(_authoring_note(args, limits.get("AUTHORING_TOKEN")), flush=True)
     if not (default_viewer() / "index.html").is_file():
         print(f"lanterna {command}: warning: the viewer is not built, /viewer/ answers 404 "
               f"({BUILD_VIEWER})", file=sys.stderr)
@@ -213,6 +227,14 @@ def _print_urls(args: argparse.Namespace, address: tuple[str, int], root: Path,
     if workers is None:
         print(_local_note(address[0]))
     sys.stdout.flush()
+
+
+def _authoring_note(args: argparse.Namespace, token: object) -> str:
+    """Whether the authoring API can write, and where its token came from (never the token)."""
+    if not token:
+        return "Authoring API: off (read-only; --authoring-token-file FILE turns it on)"
+    source = args.authoring_token_file or "$LANTERNA_AUTHORING_TOKEN"
+    return f"Authoring API: on (token from {source}); viewers can save presets"
 
 
 def _local_note(address: str) -> str:

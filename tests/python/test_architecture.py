@@ -47,7 +47,8 @@ ALLOWED: dict[str, set[str]] = {
                            f"{T}.overlays"},
     f"{T}.demo": BASE | {f"{T}.formats", f"{T}.inputs", f"{T}.iiif", f"{T}.render",
                          f"{T}.dataset", f"{T}.overlays", f"{T}.fit"},
-    "lanterna.server": {E, f"{T}.iiif"},
+    f"{T}.presets": BASE | {f"{T}.render", f"{T}.dataset"},
+    "lanterna.server": {E, f"{T}.iiif", f"{T}.presets"},
     "lanterna.commands": {"*"},
     "lanterna.cli": {"*"},
 }

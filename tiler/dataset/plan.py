@@ -29,15 +29,19 @@ class LayerPlan:
     height: int
     source: str
     add: Callable[[DatasetWriter], object]
+    #: The physical size of a pixel the source states (Relight's ``pixelSizeInMM``), if any.
+    pixel_size_mm: float | None = None
 
 
 def build_dataset(plans: Sequence[LayerPlan], out: Path, *, name: str, label: str,
                   base_url: str = DEFAULT_BASE_URL, tile_size: int = 256, force: bool = False,
                   summary: str | None = None, quality: dict[str, Any] | None = None,
-                  tiff: bool = False) -> Path:
+                  tiff: bool = False, pixel_size_mm: float | None = None) -> Path:
     """Write the planned layers (same size, unique ids) as one dataset at ``out``.
 
     ``tiff=True`` also writes a pyramidal TIFF per image for the IIIF image server.
+    ``pixel_size_mm`` is the physical size of a pixel (``--pixel-size``); without it, the first
+    one a plan's source states is used.
     """
     if not plans:
         raise LanternaInputError(None, "nothing to import: give at least one source")
@@ -50,10 +54,12 @@ def build_dataset(plans: Sequence[LayerPlan], out: Path, *, name: str, label: st
         if plan.id in seen:
             raise LanternaInputError(plan.source, f"layer id {plan.id!r} is used twice")
         seen.add(plan.id)
+    if pixel_size_mm is None:
+        pixel_size_mm = next((p.pixel_size_mm for p in plans if p.pixel_size_mm), None)
     with DatasetWriter(out, name=name, label=label, width=w, height=h, base_url=base_url,
                        tile_size=tile_size, source=", ".join(p.source for p in plans),
                        force=force, summary=summary,
-                       quality=quality, tiff=tiff) as ds:
+                       quality=quality, tiff=tiff, pixel_size_mm=pixel_size_mm) as ds:
         for plan in plans:
             plan.add(ds)
     return Path(out)

@@ -9,6 +9,7 @@ previous dataset in place and nothing half-written. Writers hold the dataset's l
 from __future__ import annotations
 
 import json
+import math
 import os
 import re
 import shutil
@@ -62,7 +63,8 @@ class DatasetWriter:
                  base_url: str = DEFAULT_BASE_URL, tile_size: int = 256,
                  source: str | None = None, force: bool = False,
                  summary: str | None = None, quality: dict[str, Any] | None = None,
-                 tiff: bool = False) -> None:
+                 tiff: bool = False, pixel_size_mm: float | None = None,
+                 presets: dict[str, Any] | None = None) -> None:
         self.out = Path(out)
         self.name = check_identifier(name, "dataset name")
         self.label = label
@@ -74,6 +76,8 @@ class DatasetWriter:
         self.quality = quality
         self.force = force
         self.tiff = tiff
+        self.pixel_size_mm = check_pixel_size(pixel_size_mm)
+        self.presets = presets
         self.images: dict[str, dict[str, Any]] = {}
         self.layers: list[dict[str, Any]] = []
         self._shared: dict[str, str] = {}
@@ -191,6 +195,7 @@ class DatasetWriter:
             "source": self.source,
             **({"summary": self.summary} if self.summary else {}),
             **({"quality": self.quality} if self.quality else {}),
+            **({"pixelSizeMM": self.pixel_size_mm} if self.pixel_size_mm else {}),
             "images": self.images,
             "layers": [
                 {"id": layer["id"], "label": layer["label"], "body": layer["body"],
@@ -198,6 +203,7 @@ class DatasetWriter:
                  **({"overlay": layer["overlay"]} if "overlay" in layer else {})}
                 for layer in self.layers
             ],
+            **({"presets": self.presets} if self.presets else {}),
         }
 
     def _finish(self) -> None:
@@ -209,8 +215,19 @@ class DatasetWriter:
             publish(self._tmp, self.out)
 
 
+def check_pixel_size(mm: float | None) -> float | None:
+    """Return ``mm``, the physical size of a pixel (``--pixel-size``), if positive; else raise."""
+    if mm is None:
+        return None
+    if not (isinstance(mm, int | float) and math.isfinite(mm) and mm > 0):
+        raise LanternaInputError(None, f"--pixel-size must be a positive number of millimetres, "
+                                 f"not {mm!r}")
+    return float(mm)
+
+
 def write_documents(folder: Path, desc: dict[str, Any], out: Path) -> None:
-    """Write ``desc`` as ``layers/*.json``, ``lanterna.json`` and ``manifest.json`` in folder.
+    """Write ``desc`` as ``layers/*.json``, ``lanterna.json``, ``manifest.json`` in folder, and
+    its preset library (``presets``) as ``presets.json`` (removed when there is none).
 
     ``folder`` becomes the dataset ``out``: a number that is not finite is a one-line error
     naming the file in ``out`` (see :func:`~.output.json_text`). The manifest and the layer
@@ -224,6 +241,10 @@ def write_documents(folder: Path, desc: dict[str, Any], out: Path) -> None:
         name = f"layers/{layer['id']}.json"
         _write_json(folder / name, with_plane_descriptions(layer["service"], ds_url, infos),
                     out / name)
+    if desc.get("presets"):
+        _write_json(folder / "presets.json", desc["presets"], out / "presets.json")
+    else:
+        (folder / "presets.json").unlink(missing_ok=True)
     _write_json(folder / "lanterna.json", desc, out / "lanterna.json")
     _write_json(folder / "manifest.json", build_manifest(desc, infos), out / "manifest.json")
 

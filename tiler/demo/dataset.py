@@ -10,6 +10,8 @@ under a dome of lights (:mod:`.demo_render`):
 - ``ir``, ``uv`` and ``R``/``G``/``B`` spectral bands as grey layers, where the infrared band shows
   a preparatory underdrawing invisible in the visible bands and the ultraviolet band shows the
   fluorescing paint; ``fc_ir_r_g``: an infrared false-colour fusion.
+
+It ships a preset library (:mod:`.presets`) and a pixel size of 0.05 mm (a scale bar).
 """
 
 from __future__ import annotations
@@ -35,6 +37,7 @@ from lanterna.tiler.iiif.pyramid import vips_from_array
 from lanterna.tiler.overlays.build import build_overlays
 
 from .dome import demo_lights, render_stack
+from .presets import DEMO_PIXEL_MM, demo_presets
 from .tablet import make_demo_object
 
 DEMO_SIZE = (1536, 1152)
@@ -101,7 +104,8 @@ def build_demo(out: Path, *, base_url: str = DEFAULT_BASE_URL, force: bool = Fal
                "infrared band reveals an underdrawing) and a false-colour fusion.")
     with DatasetWriter(out, name=Path(out).name, label=label, width=width, height=height,
                        base_url=base_url, source="synthetic", force=force,
-                       summary=summary) as ds:
+                       summary=summary, pixel_size_mm=DEMO_PIXEL_MM,
+                       presets=demo_presets(width, height)) as ds:
         add_ptm_layer(ds, ptm, layer_id="ptm", label="Relief tablet (PTM LRGB)")
         add_hsh_layer(ds, hsh, layer_id="hsh", label="Relief tablet (HSH, 9 terms)")
         share = {"normals": "demo-normals"}

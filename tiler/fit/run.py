@@ -100,7 +100,8 @@ def fit_sets(sets: Sequence[ImageSet], models: Sequence[str], out: Path, *,
              fit_space: str = "stored", scheduler: str | None = None,
              plane_format: PlaneFormat = AUTO,
              report: Callable[[str], None] = lambda _: None,
-             progress: ProgressFactory | None = None) -> dict[str, Any]:
+             progress: ProgressFactory | None = None,
+             pixel_size_mm: float | None = None) -> dict[str, Any]:
     """Fit ``models`` to every image set (and fusion) and write them as one dataset ``out``.
 
     One set without a name gives layers named by model (``ptm``, ``hsh9``, …); named sets
@@ -206,7 +207,7 @@ def fit_sets(sets: Sequence[ImageSet], models: Sequence[str], out: Path, *,
         default_label = sets[0].images_dir.name if len(sets) == 1 else Path(out).name
         build_dataset(plans, out, name=name or Path(out).name, label=label or default_label,
                       base_url=base_url, tile_size=tile_size, force=force, quality=quality,
-                      tiff=tiff)
+                      tiff=tiff, pixel_size_mm=pixel_size_mm)
     return quality
 
 

@@ -53,7 +53,8 @@ def read_relight(folder: str | Path) -> PlaneLayer:
     PlaneLayer
         ``layer_type`` ``"ptm"`` (``colorspace`` ``"lrgb"`` or ``"rgb"``) or ``"hsh"``
         (``terms`` 4, 9 or 16), groups in Lanterna's channel order with the folder's bytes and
-        per-channel scale/bias. ``extra`` records the source ``nplanes`` and ``quality``.
+        per-channel scale/bias. ``extra`` records the source ``nplanes`` and ``quality``, and
+        ``pixelSizeMM`` when info.json states ``pixelSizeInMM`` (the physical size of a pixel).
 
     Raises
     ------
@@ -79,6 +80,8 @@ def read_relight(folder: str | Path) -> PlaneLayer:
     extra: dict[str, object] = {"source": "relight", "nplanes": nplanes}
     if isinstance(info.get("quality"), int):
         extra["quality"] = info["quality"]
+    if "pixelSizeInMM" in info:
+        extra["pixelSizeMM"] = float(info["pixelSizeInMM"])
     if rtype == "hsh":
         rgb = [list(range(3 * k, 3 * k + 3)) for k in range(nplanes // 3)]
         groups = [PlaneGroup([f"R{k}", f"G{k}", f"B{k}"], _stack(planes, rgb[k]),

@@ -18,7 +18,7 @@ def import_sources(sources: Sequence[Path], out: Path, *, name: str | None = Non
                    label: str | None = None, bands: dict[str, Path] | None = None,
                    fusions: Sequence[Sequence[str]] = (), base_url: str = DEFAULT_BASE_URL,
                    tile_size: int = 256, force: bool = False, tiff: bool = False,
-                   plane_format: PlaneFormat = AUTO) -> Path:
+                   plane_format: PlaneFormat = AUTO, pixel_size_mm: float | None = None) -> Path:
     """Import sources as the layers of dataset ``out`` (in order; the first is the default).
 
     A source is a ``.ptm``, ``.rti``, a Relight web-format folder, an image, or a dataset
@@ -26,7 +26,8 @@ def import_sources(sources: Sequence[Path], out: Path, *, name: str | None = Non
     layer per spectral band, ``fusions`` one false-colour layer per band triple. ``tiff`` also
     writes a pyramidal TIFF per image (``tiff/<image>.tif``) for the IIIF image server.
     ``plane_format`` (``--plane-format``) is the tile format of relightable layers' planes
-    (:mod:`lanterna.tiler.dataset.plane_format`).
+    (:mod:`lanterna.tiler.dataset.plane_format`). ``pixel_size_mm`` (``--pixel-size``) is the
+    physical size of a pixel; without it, a Relight source's ``pixelSizeInMM`` is used.
     """
     plans: list[LayerPlan] = []
     fields: dict[str, str] = {}
@@ -48,7 +49,7 @@ def import_sources(sources: Sequence[Path], out: Path, *, name: str | None = Non
     ds_label = label or fields.get("label") or first.stem
     return build_dataset(plans, out, name=ds_name, label=ds_label, base_url=base_url,
                          tile_size=tile_size, force=force, summary=fields.get("summary"),
-                         tiff=tiff)
+                         tiff=tiff, pixel_size_mm=pixel_size_mm)
 
 
 def _safe_name(stem: str) -> str:

@@ -62,9 +62,11 @@ def plan_source(path: Path, *, layer_id: str | None = None, label: str | None = 
         planes = read_relight(path)
         kind = f"{planes.layer_type.upper()} {(planes.colorspace or '').upper()}".strip()
         lbl = label or f"{path.name} ({kind}, Relight)"
+        size = planes.extra.get("pixelSizeMM")
         return LayerPlan(lid, lbl, planes.width, planes.height, path.name,
                          lambda ds: add_planes_layer(ds, planes, layer_id=lid, label=lbl,
-                                                     plane_format=plane_format))
+                                                     plane_format=plane_format),
+                         pixel_size_mm=float(size) if isinstance(size, int | float) else None)
     if not path.is_file():
         if path.exists():
             raise LanternaInputError(path, "is not a regular file (a device, FIFO or socket)")

@@ -6,7 +6,7 @@ import pytest
 
 from lanterna.cli import main
 
-COMMANDS = ["import", "fit", "annotate", "serve", "demo", "export"]
+COMMANDS = ["import", "fit", "annotate", "presets", "serve", "demo", "export"]
 
 
 def _help(argv: list[str], capsys: pytest.CaptureFixture[str]) -> str:
@@ -17,7 +17,8 @@ def _help(argv: list[str], capsys: pytest.CaptureFixture[str]) -> str:
 
 
 @pytest.mark.parametrize("argv", [[c] for c in COMMANDS] + [["annotate", "build"],
-                                                           ["annotate", "list"]],
+                                                           ["annotate", "list"]] +
+                         [["presets", a] for a in ("add", "list", "remove", "export", "import")],
                          ids=" ".join)
 def test_each_command_ends_with_its_own_examples(argv: list[str],
                                                  capsys: pytest.CaptureFixture[str]) -> None:

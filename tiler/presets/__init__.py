@@ -1,0 +1,1 @@
+"""Preset libraries: named rendering configurations of a dataset's layers (docs/presets.md)."""
