@@ -48,8 +48,11 @@ function readPreset(r: Reader, x: unknown, path: string): Preset {
   }
   if (obj.view !== undefined) {
     const [vx, vy, vw, vh] = r.numbers(obj.view, join(path, 'view'), 4) as [number, number, number, number];
-    if (!(vw > 0 && vh > 0)) {
-      r.fail(join(path, 'view'), `the width and height must be positive, got ${describe(obj.view)}`);
+    if (!(vw > 0)) {
+      r.fail(join(join(path, 'view'), 2), `the width must be positive, got ${describe(vw)}`);
+    }
+    if (!(vh > 0)) {
+      r.fail(join(join(path, 'view'), 3), `the height must be positive, got ${describe(vh)}`);
     }
     preset.view = [vx, vy, vw, vh];
   }
