@@ -35,6 +35,7 @@ const ALLOWED: Readonly<Record<string, readonly string[]>> = {
   index: ['errors', 'math', 'iiif', 'render', 'gl', 'layers', 'tiles', 'lens', 'ui', 'overlay', 'drawer', 'api',
     'panel', 'viewer', 'presets'],
   demo: ['index'],
+  simple: ['index'],
 };
 
 /** The packages a part may import. */
