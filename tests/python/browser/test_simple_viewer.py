@@ -235,15 +235,25 @@ def test_a_kiosk_returns_to_its_first_preset_after_the_idle_time(
     steps = [{"type": "read", "name": "start"},
              {"type": "click", "selector": "#base-list button[data-index='2']"},
              {"type": "click", "selector": "#lens-list button[data-index='1']"},
+             {"type": "read", "name": "chosen"},
              {"type": "wheel", "at": [300, 300], "deltaY": -300},
-             {"type": "mouse", "from": [500, 500], "to": [700, 400]},
+             {"type": "read", "name": "zoomed"},
+             {"type": "mouse", "from": [150, 600], "to": [250, 650]},  # outside the lens
+             {"type": "read", "name": "lit"},
+             {"type": "mouse", "from": [150, 600], "to": [100, 650], "button": "right"},
              {"type": "read", "name": "changed"},
              {"type": "waitForIdleReset"},
              {"type": "read", "name": "reset"}]
     result, reads = drive(page_url(server, "obj", "&kiosk=1&idle=3"), steps, tmp_path)
     start, changed, reset = reads["start"], reads["changed"], reads["reset"]
-    assert changed.state["layer"] == "material" and changed.state["lens"]["enabled"]
-    assert changed.state["view"]["zoom"] > start.state["view"]["zoom"] * 1.1
+    chosen, zoomed, lit = reads["chosen"], reads["zoomed"], reads["lit"]
+    assert chosen.state["layer"] == "material" and chosen.state["lens"]["enabled"]
+    # the mouse: wheel zooms, a drag lights, a right-drag pans
+    assert zoomed.state["view"]["zoom"] > chosen.state["view"]["zoom"] * 1.1
+    assert lit.state["light"] != zoomed.state["light"] and lit.state["view"] == zoomed.state["view"]
+    assert changed.state["view"]["center"] != lit.state["view"]["center"]
+    assert changed.state["light"] == lit.state["light"]
+    assert chosen.ui["fullscreen"], "the first gesture of a kiosk asks for fullscreen"
     assert reset.ui["idleResets"] == changed.ui["idleResets"] + 1
     assert _state_key(reset) == _state_key(start)
     assert np.array_equal(reset.frame, start.frame)
@@ -307,7 +317,7 @@ def test_a_kiosk_shows_no_dialog_when_a_tile_or_the_presets_fail(
              {"type": "waitFor", "selector": "#note[hidden]"},
              {"type": "read", "name": "later"}]
     routes = [{"match": r"/library\.json$", "status": 404},
-              {"match": rf"/iiif/({ptm_images})/0,0,64,64/", "status": 404}]
+              {"match": rf"/iiif/({ptm_images})/0,0,64,64/", "status": 404, "times": 1}]
     result, reads = drive(page_url(server, "bare", f"&kiosk=1&presets={server.url}/datasets/bare/"
                                                    "library.json"),
                           steps, tmp_path, options={"routes": routes, "allowConsoleErrors": [
