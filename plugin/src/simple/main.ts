@@ -10,10 +10,10 @@ import { wireFullscreenButton } from './fullscreen';
 import { createIdleTimer, type IdleTimer } from './idle-timer';
 import { lockDownKiosk } from './kiosk';
 import { bridgeNotices } from './notices-bridge';
-import { readPageOptions, type SimplePageOptions } from './page-options';
+import { readPageOptions, RETRY_SECONDS, type SimplePageOptions } from './page-options';
 import { createPageNote } from './page-note';
 import { startSimpleViewer, type SimpleElements } from './simple-viewer';
-import { createUnavailableScreen, RETRY_SECONDS } from './unavailable';
+import { createUnavailableScreen } from './unavailable';
 
 declare global {
   interface Window {
@@ -33,7 +33,7 @@ function byId<T extends HTMLElement = HTMLElement>(id: string): T {
 const body = document.body;
 const panel = byId('controls');
 const note = createPageNote(byId('note'));
-const screen = createUnavailableScreen(byId('unavailable'), RETRY_SECONDS);
+let screen = createUnavailableScreen(byId('unavailable'), RETRY_SECONDS);
 const elements: SimpleElements = {
   baseMenu: byId('base-menu'), baseList: byId('base-list'), lensMenu: byId('lens-menu'), lensList: byId('lens-list'),
   lensToggle: byId<HTMLButtonElement>('lens-toggle'), measureToggle: byId<HTMLButtonElement>('measure-toggle'),
@@ -46,7 +46,7 @@ function unavailable(error: unknown, options: SimplePageOptions | null): void {
   body.dataset.state = 'unavailable';
   screen.show(options?.kiosk ? null : error instanceof Error ? error.message : String(error), options !== null);
   if (options) {
-    setTimeout(() => { void open(options); }, RETRY_SECONDS * 1000);
+    setTimeout(() => { void open(options); }, options.retrySeconds * 1000);
   }
 }
 
@@ -103,6 +103,7 @@ try {
   unavailable(error, null);
 }
 if (options) {
+  screen = createUnavailableScreen(byId('unavailable'), options.retrySeconds);
   const fullscreen = byId<HTMLButtonElement>('fullscreen');
   if (options.kiosk) {
     lockDownKiosk(document); // fullscreen on the first gesture; no button to leave it

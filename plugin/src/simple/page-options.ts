@@ -5,6 +5,8 @@
 
 /** How long a kiosk waits without input before it returns to its first preset (s). */
 export const DEFAULT_IDLE_SECONDS = 120;
+/** How often the page tries again to open an object that could not be opened (s). */
+export const RETRY_SECONDS = 30;
 
 /** The page's options, read from its URL. */
 export interface SimplePageOptions {
@@ -20,6 +22,8 @@ export interface SimplePageOptions {
   readonly minPixelRatio: number | null;
   /** Test-only: the advanced page's `wholeLevelMaxSide`, or undefined. */
   readonly wholeLevelMaxSide: number | undefined;
+  /** Seconds between two tries to open an object that could not be opened (test-only `&retry=`). */
+  readonly retrySeconds: number;
 }
 
 /** The URL does not say what to show. */
@@ -63,6 +67,7 @@ export function readPageOptions(search: string, base: string): SimplePageOptions
   const kiosk = kioskValue !== null && TRUE.has(kioskValue.toLowerCase());
   const idle = number(params.get('idle'));
   const ratio = number(params.get('minPixelRatio'));
+  const retry = number(params.get('retry'));
   return {
     manifest,
     presets: resolve('presets'),
@@ -70,5 +75,6 @@ export function readPageOptions(search: string, base: string): SimplePageOptions
     idleSeconds: idle ?? (kiosk ? DEFAULT_IDLE_SECONDS : 0),
     minPixelRatio: ratio !== undefined && ratio > 0 ? ratio : null,
     wholeLevelMaxSide: number(params.get('wholeLevelMaxSide')),
+    retrySeconds: retry !== undefined && retry > 0 ? retry : RETRY_SECONDS,
   };
 }

@@ -3,9 +3,6 @@
  * manifest is missing, no WebGL2): no dialog, nothing to dismiss; the page tries again on its own.
  */
 
-/** How often the page tries again to open the object (s). */
-export const RETRY_SECONDS = 30;
-
 /** The message screen. */
 export interface UnavailableScreen {
   /**

@@ -1,5 +1,5 @@
 import { describe, expect, it } from 'vitest';
-import { DEFAULT_IDLE_SECONDS, PageOptionsError, readPageOptions } from '../../../plugin/src/simple/page-options';
+import { DEFAULT_IDLE_SECONDS, PageOptionsError, readPageOptions, RETRY_SECONDS } from '../../../plugin/src/simple/page-options';
 
 const PAGE = 'http://host/viewer/simple.html';
 
@@ -29,7 +29,10 @@ describe('readPageOptions', () => {
     const o = readPageOptions('?manifest=m.json&minPixelRatio=0.75&wholeLevelMaxSide=0', PAGE);
     expect(o.minPixelRatio).toBe(0.75);
     expect(o.wholeLevelMaxSide).toBe(0);
-    expect(readPageOptions('?manifest=m.json', PAGE)).toMatchObject({ minPixelRatio: null, wholeLevelMaxSide: undefined });
+    expect(readPageOptions('?manifest=m.json', PAGE)).toMatchObject({
+      minPixelRatio: null, wholeLevelMaxSide: undefined, retrySeconds: RETRY_SECONDS,
+    });
+    expect(readPageOptions('?manifest=m.json&retry=2', PAGE).retrySeconds).toBe(2);
   });
 
   it('says what is missing', () => {

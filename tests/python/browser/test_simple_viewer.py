@@ -342,6 +342,19 @@ def test_a_kiosk_that_cannot_open_the_object_says_so_calmly(
     assert controls(result) == [] and ui["dialogs"] == [] and result["dialogs"] == []
 
 
+def test_a_kiosk_opens_the_object_when_it_comes_back(
+        site: tuple[LiveServer, Path], tmp_path: Path) -> None:
+    server, _ = site
+    routes = [{"match": r"/datasets/obj/manifest\.json$", "status": 503, "times": 1}]
+    result, reads = drive(page_url(server, "obj", "&kiosk=1&retry=1"),
+                          [{"type": "read", "name": "start"}], tmp_path,
+                          options={"routes": routes, "allowConsoleErrors": [".*"]})
+    manifest = [u for u in result["requests"] if u.endswith("/datasets/obj/manifest.json")]
+    assert result["routeHits"] == [1] and len(manifest) == 2  # failed, then tried again
+    assert reads["start"].ui["unavailable"] is None
+    assert pressed(reads["start"], "base-menu") == [BASE_LABELS[0]]
+
+
 def test_the_phone_layout_keeps_the_object_in_view_and_the_targets_large(
         site: tuple[LiveServer, Path], tmp_path: Path) -> None:
     server, _ = site
