@@ -241,6 +241,7 @@ def test_a_kiosk_returns_to_its_first_preset_after_the_idle_time(
              {"type": "mouse", "from": [150, 600], "to": [250, 650]},  # outside the lens
              {"type": "read", "name": "lit"},
              {"type": "mouse", "from": [150, 600], "to": [100, 650], "button": "right"},
+             {"type": "click", "selector": "#measure-toggle"},
              {"type": "read", "name": "changed"},
              {"type": "waitForIdleReset"},
              {"type": "read", "name": "reset"}]
@@ -254,10 +255,15 @@ def test_a_kiosk_returns_to_its_first_preset_after_the_idle_time(
     assert changed.state["view"]["center"] != lit.state["view"]["center"]
     assert changed.state["light"] == lit.state["light"]
     assert chosen.ui["fullscreen"], "the first gesture of a kiosk asks for fullscreen"
+    toggles = {c["id"]: c["pressed"] for c in controls(changed) if c["menu"] is None}
+    assert toggles["measure-toggle"] == "true" and changed.state["dragMode"] != "light"
     assert reset.ui["idleResets"] == changed.ui["idleResets"] + 1
     assert _state_key(reset) == _state_key(start)
     assert np.array_equal(reset.frame, start.frame)
     assert pressed(reset, "base-menu") == [BASE_LABELS[0]] and pressed(reset, "lens-menu") == []
+    toggles = {c["id"]: c["pressed"] for c in controls(reset) if c["menu"] is None}
+    assert toggles == {"lens-toggle": "false", "measure-toggle": "false"}  # measurement off
+    assert reset.state["dragMode"] == "light"
     # locked down: no context menu, no selection, no page zoom, no button to leave fullscreen
     ui = start.ui
     assert ui["kiosk"] and ui["contextMenuBlocked"] and ui["userSelect"] == "none"
