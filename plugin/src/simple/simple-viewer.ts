@@ -46,10 +46,7 @@ export async function startSimpleViewer(lanterna: LanternaViewer, elements: Simp
   kiosk: boolean): Promise<SimpleViewer> {
   const library = lanterna.getPresetLibrary();
   const controls = simpleControls(library, lanterna.getLayers());
-  const start = {
-    layer: lanterna.getActiveLayer(), mode: lanterna.getRenderMode(), light: lanterna.getLight(),
-    lens: lanterna.getLens(),
-  };
+  const start = { layer: lanterna.getActiveLayer(), mode: lanterna.getRenderMode(), light: lanterna.getLight() };
   let lensIndex = 0;
   let measuring = false;
   const measurement: MeasurementMode | null = controls.measureToggle
@@ -108,11 +105,18 @@ export async function startSimpleViewer(lanterna: LanternaViewer, elements: Simp
   elements.lensToggle.hidden = !controls.lensToggle;
   elements.measureToggle.hidden = !controls.measureToggle;
   const unsubscribe = lanterna.onChange(sync);
+  // The lens starts in the middle of the viewer as the page is laid out now, with its menus (the
+  // viewer was made before them, in a larger element).
+  const box = lanterna.viewer.element;
+  const lensHome = {
+    center: [box.clientWidth / 2, box.clientHeight / 2] as const,
+    radius: Math.min(box.clientWidth, box.clientHeight) / 5,
+  };
 
   const reset = (): Promise<void> => run(async () => {
     setMeasuring(false);
     lensIndex = 0;
-    await lanterna.setLens({ enabled: false, center: start.lens.center, radius: start.lens.radius });
+    await lanterna.setLens({ enabled: false, ...lensHome });
     lanterna.viewer.viewport.goHome(true);
     if (controls.baseMenu) {
       await lanterna.applyPreset('base', 0); // its view, if it has one, replaces the home view

@@ -364,8 +364,10 @@ def test_a_kiosk_opens_the_object_when_it_comes_back(
 def test_the_phone_layout_keeps_the_object_in_view_and_the_targets_large(
         site: tuple[LiveServer, Path], tmp_path: Path) -> None:
     server, _ = site
-    _, reads = drive(page_url(server, "obj"), [{"type": "read", "name": "start"}], tmp_path,
-                     viewport=(390, 844), options={"touch": True, "mobile": True})
+    steps = [{"type": "read", "name": "start"}, {"type": "click", "selector": "#lens-toggle"},
+             {"type": "read", "name": "lens"}]
+    _, reads = drive(page_url(server, "obj"), steps, tmp_path, viewport=(390, 844),
+                     options={"touch": True, "mobile": True})
     start = reads["start"]
     assert start.ui["scroll"][0] <= start.ui["scroll"][1]
     x, y, w, h = start.ui["viewer"]
@@ -374,6 +376,9 @@ def test_the_phone_layout_keeps_the_object_in_view_and_the_targets_large(
     assert len(found) == len(BASE_LABELS) + len(LENS_LABELS) + len(CONTROL_IDS)
     assert min(min(c["rect"][2], c["rect"][3]) for c in found) >= 48
     assert all(c["rect"][1] >= h for c in found)  # below the image, none over it
+    # the lens opens in the middle of the image's area, not of the page the menus share
+    lens = reads["lens"].state["lens"]
+    assert lens["enabled"] and lens["center"] == pytest.approx([w / 2, h / 2], abs=0.5)
 
 
 def test_the_page_needs_a_manifest(live_server: Callable[[Path], LiveServer],
