@@ -6,7 +6,7 @@ VENV   := .venv
 PY     := $(VENV)/bin/python
 PORT   ?= 8000
 CHROMIUM := /usr/bin/chromium
-PLUGIN_SOURCES := $(shell find plugin/src plugin/index.html plugin/*.ts plugin/*.json -type f 2>/dev/null)
+PLUGIN_SOURCES := $(shell find plugin/src plugin/*.html plugin/*.ts plugin/*.json -type f 2>/dev/null)
 
 .PHONY: demo test install build wheel lint typecheck typecheck-tree test-unit test-python browser-deps serve clean screenshot
 

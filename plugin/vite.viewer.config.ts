@@ -1,8 +1,11 @@
+import { resolve } from 'node:path';
 import { defineConfig } from 'vite';
 
 /**
- * Viewer page build. `base: './'` keeps every asset path relative, so the page works when served
- * at `/viewer/` by `lanterna serve` and from any static host.
+ * Viewer pages build: the advanced viewer (`index.html`) and the simplified, preset-driven viewer
+ * (`simple.html`, docs/simple-viewer.md), sharing one chunk of the plugin. `base: './'` keeps every
+ * asset path relative, so the pages work when served at `/viewer/` by `lanterna serve` and from any
+ * static host.
  */
 export default defineConfig({
   root: import.meta.dirname,
@@ -12,7 +15,13 @@ export default defineConfig({
     emptyOutDir: true,
     sourcemap: true,
     chunkSizeWarningLimit: 1024,
-    // Error classes name themselves from `new.target.name`: keep class names through minification.
-    rollupOptions: { output: { keepNames: true } },
+    rollupOptions: {
+      input: {
+        index: resolve(import.meta.dirname, 'index.html'),
+        simple: resolve(import.meta.dirname, 'simple.html'),
+      },
+      // Error classes name themselves from `new.target.name`: keep class names through minification.
+      output: { keepNames: true },
+    },
   },
 });

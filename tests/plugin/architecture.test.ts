@@ -37,6 +37,7 @@ const ALLOWED: Readonly<Record<string, readonly string[]>> = {
   index: ['errors', 'math', 'iiif', 'render', 'gl', 'layers', 'tiles', 'lens', 'ui', 'overlay', 'drawer', 'api',
     'panel', 'viewer', 'presets', 'measure'],
   demo: ['index'],
+  simple: ['index'],
 };
 
 /** The packages a part may import. */

@@ -30,6 +30,8 @@ pytestmark = pytest.mark.packaging
 FOLDERS = {"lanterna": "lanterna", "lanterna.tiler": "tiler", "lanterna.manifests": "manifests",
            "lanterna.server": "server"}
 DIST_INFO = "lanterna-0.1.0.dist-info"
+#: The viewer pages (plugin/*.html, built into plugin/dist/viewer).
+VIEWER_PAGES = ("index", "simple")
 #: Deadline for the server to print its first line (not a performance bound).
 START_DEADLINE_S = 60
 IMPORT_ALL = """
@@ -97,12 +99,15 @@ def test_the_wheel_holds_every_module_the_viewer_and_the_licence(wheel: Path) ->
         names = set(zf.namelist())
         licence = zf.read(f"{DIST_INFO}/licenses/LICENSE")
         metadata = zf.read(f"{DIST_INFO}/METADATA").decode()
-        viewer_html = zf.read("lanterna/server/viewer/index.html").decode()
+        pages = {page: zf.read(f"lanterna/server/viewer/{page}.html").decode()
+                 for page in VIEWER_PAGES}
     assert {n for n in names if n.endswith(".py")} == set(_source_modules())
-    script = re.search(r'<script type="module"[^>]* src="\./(assets/index-[\w-]+\.js)"',
-                       viewer_html)
-    assert script, viewer_html
-    assert f"lanterna/server/viewer/{script[1]}" in names
+    for page, html in pages.items():  # the advanced and the simplified viewer, and their assets
+        script = re.search(rf'<script type="module"[^>]* src="\./(assets/{page}-[\w-]+\.js)"', html)
+        assert script, html
+        assets = re.findall(r'(?:src|href)="\./(assets/[^"]+)"', html)
+        assert script[1] in assets
+        assert {f"lanterna/server/viewer/{a}" for a in assets} <= names, (page, assets)
     assert not [n for n in names if n.endswith(".map")]  # source maps stay in the checkout
     assert {"lanterna/manifests/schema/iiif_3_0.json",
             "lanterna/manifests/schema/NOTICE.md"} <= names
@@ -152,6 +157,12 @@ def test_import_and_serve_from_the_fresh_venv(venv: Path, tmp_path: Path) -> Non
         with urllib.request.urlopen(f"{url}/viewer/{script[1]}", timeout=30) as resp:
             assert "javascript" in resp.headers["Content-Type"]
             assert resp.read() == (packaged / script[1]).read_bytes()
+        with urllib.request.urlopen(f"{url}/viewer/simple.html", timeout=30) as resp:
+            simple = resp.read().decode()
+        assert simple == (packaged / "simple.html").read_text()
+        for asset in re.findall(r'(?:src|href)="\./(assets/[^"]+\.js)"', simple):
+            with urllib.request.urlopen(f"{url}/viewer/{asset}", timeout=30) as resp:
+                assert resp.read() == (packaged / asset).read_bytes()
 
         image = tmp_path / "datasets/obj/iiif/obj_c0"
         with urllib.request.urlopen(f"{url}/datasets/obj/iiif/obj_c0/info.json",
