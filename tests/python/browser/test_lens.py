@@ -26,6 +26,7 @@ from tests.python.fixtures.lens import (
     assert_close,
     disk,
     level_channels,
+    level_image,
     over,
     overlay_at,
     reference,
@@ -97,6 +98,51 @@ def test_hypertext_follows_the_zoom(
     assert [s["hypertext"] for s in states] == ["Glyph detail", "Glyph detail", "Whole panel"]
     long = states[0]["overlayState"]["long"]
     assert long == "<p>A <b>glyph</b>.</p>", "the long text is sanitised (no script)"
+
+
+# -- magnified overlays -------------------------------------------------------------------------
+#: 32×24 image px around the left edge of the level-0 patch (its 6-px alpha ramp starts at x = 160),
+#: inside one 128-px overlay tile, magnified 8× into the 256×192 view.
+MAGNIFIED = (152, 150, 32, 24)
+
+
+def bilinear(img: npt.NDArray[np.float32], region: tuple[int, int, int, int],
+             size: tuple[int, int]) -> npt.NDArray[np.float32]:
+    """``img`` sampled bilinearly at the centres of a ``size`` grid of device pixels over ``region``."""
+    x0, y0, w, h = region
+    tx = x0 + (np.arange(size[0]) + 0.5) * w / size[0] - 0.5
+    ty = y0 + (np.arange(size[1]) + 0.5) * h / size[1] - 0.5
+    ix, iy = np.floor(tx).astype(int), np.floor(ty).astype(int)
+    fx, fy = (tx - ix)[None, :, None], (ty - iy)[:, None, None]
+    def at(dy: int, dx: int) -> npt.NDArray[np.float32]:
+        return img[(iy + dy)[:, None], (ix + dx)[None, :]]
+    out: npt.NDArray[np.float32] = ((at(0, 0) * (1 - fx) + at(0, 1) * fx) * (1 - fy)
+                                    + (at(1, 0) * (1 - fx) + at(1, 1) * fx) * fy)
+    return out
+
+
+def test_a_magnified_overlay_is_filtered_smoothly_on_premultiplied_colour(
+        lens_dataset: Dataset) -> None:
+    out = lens_dataset.root / "magnified"
+    out.mkdir()
+    shots = [LensShot(LIGHT, MAGNIFIED, out / "shown.rgba", overlays=True),
+             LensShot(LIGHT, MAGNIFIED, out / "hidden.rgba", overlays=False)]
+    shown, hidden = shots_and_frames(lens_dataset, shots)
+    assert shots[0].meta()["overlayState"]["level"] == 0
+    img = level_image(lens_dataset.dir / "iiif" / "base_ov0", 1).astype(np.float32) / 255
+    a = img[..., 3:4]
+    premultiplied = bilinear(np.concatenate([img[..., :3] * a, a], -1), MAGNIFIED, VIEW)
+    base = hidden[..., :3].astype(np.float32) / 255
+    alpha = premultiplied[..., 3:4]
+    expected = np.round((premultiplied[..., :3] + base * (1 - alpha)) * 255).astype(np.int16)
+    assert_close(shown, expected, np.ones(VIEW[::-1], bool), "the magnified overlay edge")
+    # a smooth ramp: many distinct partial coverages along a row, not a staircase of 0 and full
+    row = alpha[VIEW[1] // 2, :, 0]
+    assert len(np.unique(np.round(row[(row > 0.02) & (row < 0.98)], 3))) >= 40
+    # filtering straight colour instead would darken the edge beyond the tolerance (the old fringe)
+    straight = bilinear(img, MAGNIFIED, VIEW)
+    fringe = np.round((straight[..., :3] * straight[..., 3:4] + base * (1 - straight[..., 3:4])) * 255)
+    assert np.abs(fringe - expected).max() > 3 * TOLERANCE
 
 
 # -- lens ----------------------------------------------------------------------------------------
