@@ -91,13 +91,19 @@ def test_a_tiny_image_is_not_blown_up_at_home(served: Served, tmp_path: Path) ->
     assert (width, height) == (pytest.approx(2 * TINY_W, abs=1), pytest.approx(2 * TINY_H, abs=1))
     centre = ((cols.min() + cols.max() + 1) / 2, (rows.min() + rows.max() + 1) / 2)
     assert centre == (pytest.approx(640, abs=1), pytest.approx(360, abs=1))
+    # around the image the canvas is transparent: the page's background shows there
+    around = frame.copy()
+    around[rows.min(): rows.max() + 1, cols.min(): cols.max() + 1] = 0
+    assert not around.any()
+    assert (frame[rows.min() + 1: rows.max(), cols.min() + 1: cols.max(), 3] == 255).all()
 
 
 def test_the_lens_stays_inside_the_viewer_when_the_phone_turns(served: Served,
                                                                tmp_path: Path) -> None:
     lens = {"enabled": True, "center": [195, 700], "radius": 80}
     shot = browser.Shot(LIGHT, (0, 0, TINY_W, TINY_H), tmp_path / "turned.rgba",
-                        extra={"lens": lens, "gestures": [{"type": "viewport", "size": [844, 390]}]})
+                        extra={"lens": lens,
+                               "gestures": [{"type": "viewport", "size": [844, 390]}]})
     (frame,) = browser.render(served.viewer("tiny"), [shot], viewport=(390, 844),
                               options={"mobile": True})
     meta = shot.meta()

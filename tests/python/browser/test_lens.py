@@ -64,7 +64,8 @@ def test_overlay_of_the_current_level_is_drawn(
         ov = overlay_at(lens_dataset, level, factor)
         opaque = ov[..., 3] == 1
         assert opaque.sum() > 1000, "the view must show a good part of the patch"
-        assert_close(frame, over(ref, ov), everywhere, f"zoom 1/{factor} with level {level}'s overlay")
+        assert_close(frame, over(ref, ov), everywhere,
+                     f"zoom 1/{factor} with level {level}'s overlay")
         colour = np.array(PATCHES[level][0])
         assert (np.abs(frame[opaque][:, :3].astype(int) - colour) <= TOLERANCE).all()
         # (the whole frame matches the reference with only that level's image: no other level shows)
@@ -94,7 +95,8 @@ def test_hypertext_follows_the_zoom(
     states = [shot.meta() for shot, _ in zoom_shots[:3]]
     assert [s["overlayState"]["level"] for s in states] == [0, 0, 1]
     assert [s["overlayState"]["available"] for s in states] == [True, True, True]
-    assert [s["overlayState"]["short"] for s in states] == ["Glyph detail", "Glyph detail", "Whole panel"]
+    shorts = ["Glyph detail", "Glyph detail", "Whole panel"]
+    assert [s["overlayState"]["short"] for s in states] == shorts
     assert [s["hypertext"] for s in states] == ["Glyph detail", "Glyph detail", "Whole panel"]
     long = states[0]["overlayState"]["long"]
     assert long == "<p>A <b>glyph</b>.</p>", "the long text is sanitised (no script)"
@@ -108,7 +110,7 @@ MAGNIFIED = (152, 150, 32, 24)
 
 def bilinear(img: npt.NDArray[np.float32], region: tuple[int, int, int, int],
              size: tuple[int, int]) -> npt.NDArray[np.float32]:
-    """``img`` sampled bilinearly at the centres of a ``size`` grid of device pixels over ``region``."""
+    """``img`` sampled bilinearly at the centres of a ``size`` grid of device px over ``region``."""
     x0, y0, w, h = region
     tx = x0 + (np.arange(size[0]) + 0.5) * w / size[0] - 0.5
     ty = y0 + (np.arange(size[1]) + 0.5) * h / size[1] - 0.5
@@ -141,7 +143,8 @@ def test_a_magnified_overlay_is_filtered_smoothly_on_premultiplied_colour(
     assert len(np.unique(np.round(row[(row > 0.02) & (row < 0.98)], 3))) >= 40
     # filtering straight colour instead would darken the edge beyond the tolerance (the old fringe)
     straight = bilinear(img, MAGNIFIED, VIEW)
-    fringe = np.round((straight[..., :3] * straight[..., 3:4] + base * (1 - straight[..., 3:4])) * 255)
+    s_alpha = straight[..., 3:4]
+    fringe = np.round((straight[..., :3] * s_alpha + base * (1 - s_alpha)) * 255)
     assert np.abs(fringe - expected).max() > 3 * TOLERANCE
 
 
