@@ -1,6 +1,8 @@
 /**
  * Pointer interaction on the viewer: a plain drag moves the light (or pans, in pan mode),
  * Shift+drag does the other; right- or middle-drag always pans; wheel and pinch zoom (OSD default).
+ * A pinch leaves the light where it was: its first finger starts a light drag, undone when the
+ * second finger lands.
  */
 import OpenSeadragon from 'openseadragon';
 import { lightFromPointer, type Light } from '../math/light';
@@ -49,6 +51,7 @@ export function attachInteraction(viewer: OpenSeadragon.Viewer, options: Interac
   const onPress = (e: PointerEventArgs): void => {
     if (claimed()) {
       lightDrag = false;
+      lightBefore = null;
       e.preventDefaultAction = true;
       return;
     }

@@ -10,6 +10,7 @@ import type { RelightLayer } from '../iiif/relight-service';
 import type { ImageGeometry } from '../iiif/image-info';
 import { wholeLevelTiling, type WholeLevelView } from '../iiif/whole-levels';
 import { layerKindOf, type LayerKind } from '../layers/layer-kinds';
+import { HOME_MAX_PIXEL_RATIO } from '../math/home-zoom';
 import { currentLevel, homeLevelOf } from '../math/levels';
 import { addBundleItem } from '../tiles/add-item';
 import { minPixelRatioOf } from './osd-viewer';
@@ -130,12 +131,13 @@ export class LayerSlots {
 
 /**
  * The on-screen width of a layer item about to open (layers are 1 wide in viewport units): at the
- * current zoom, or for the first item at the home view OpenSeadragon will fit it to.
+ * current zoom, or for the first item at the home view (fitted, at most `HOME_MAX_PIXEL_RATIO` CSS px
+ * per image px: `math/home-zoom.ts`).
  */
 function openingView(viewer: OpenSeadragon.Viewer, geometry: ImageGeometry): WholeLevelView {
   const container = viewer.viewport.getContainerSize();
   const displayWidth = viewer.world.getItemCount() === 0
-    ? Math.min(container.x, container.y * geometry.width / geometry.height)
+    ? Math.min(container.x, container.y * geometry.width / geometry.height, HOME_MAX_PIXEL_RATIO * geometry.width)
     : viewer.viewport.getZoom(false) * container.x;
   return { displayWidth, minPixelRatio: minPixelRatioOf(viewer) };
 }
