@@ -31,6 +31,7 @@ export { ptmWeights, relightPtmPixel, BASES, PTM_BASIS_TERMS, type LightBasis } 
 export { hshWeights } from './math/hsh-basis';
 export {
   lightFromPointer, lightFromProjection, nudgeLight, OVERHEAD_LIGHT, type Light, type NudgeDirection,
+  lightAngles, lightFromAngles, type LightAngles,
 } from './math/light';
 export { RENDER_MODES, MODE_LABELS, isRenderMode, type RenderMode, type ShadingClass } from './render/modes';
 export { applicableModes, shadingClass } from './layers/layer-kinds';
@@ -47,7 +48,7 @@ export {
   ANNOTATION_DISPLAYS, LensOptionError, type AnnotationDisplay, type LensState, type LensUpdate,
 } from './lens/lens-state';
 export { lensHit, LENS_BORDER_PX, type Circle, type LensHit } from './math/lens';
-export { currentLevel } from './math/levels';
+export { currentLevel, homeLevelOf, type LevelView } from './math/levels';
 export { parseOverlays, OVERLAY_SERVICE_TYPE, OVERLAY_PROFILE, type OverlayLevel } from './iiif/overlays';
 export type { OverlayState } from './overlay/overlay-controller';
 export {

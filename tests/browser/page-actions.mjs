@@ -2,6 +2,8 @@
 //
 // Gesture steps (x, y in CSS px of the viewer element; `steps` intermediate moves, default 8):
 //   {"type": "touch", "from": [[x, y], ...], "to": [[x, y], ...], "steps": 8}  (1 or 2 fingers, CDP)
+//       "alone": n  the first finger lands and moves n steps (of its path) before the others land
+//   {"type": "viewport", "size": [width, height]}  (resize the page, then let the viewer follow)
 //   {"type": "mouse", "from": [x, y], "to": [x, y], "steps": 8, "button": "left"}  (press, drag, release)
 //   {"type": "pen", "from": [x, y], "to": [x, y], "steps": 8}  (a pen drag, CDP pointerType "pen")
 //   {"type": "wheel", "at": [x, y], "deltaY": -100}
@@ -15,7 +17,7 @@
 //   {"match": "regex", "abort": "failed"}  (a network error: playwright's route.abort codes)
 //   "times": n  (only the first n matching requests; later ones go to the server)
 
-export const GESTURE_TYPES = ['touch', 'mouse', 'pen', 'wheel', 'click', 'select', 'wait'];
+export const GESTURE_TYPES = ['touch', 'mouse', 'pen', 'wheel', 'click', 'select', 'wait', 'viewport'];
 
 function lerp(a, b, t) {
   return a + (b - a) * t;
@@ -35,8 +37,19 @@ export async function runGesture(page, cdp, origin, g, touch) {
       const q = to[id] ?? p;
       return { ...at([lerp(p[0], q[0], t), lerp(p[1], q[1], t)]), id };
     });
-    await cdp.send('Input.dispatchTouchEvent', { type: 'touchStart', touchPoints: points(0) });
-    for (let k = 1; k <= steps; k++) {
+    const alone = g.alone ?? 0;
+    await cdp.send('Input.dispatchTouchEvent', { type: 'touchStart', touchPoints: points(0).slice(0, alone > 0 ? 1 : undefined) });
+    for (let k = 1; k <= alone; k++) {
+      const first = points(k / steps).slice(0, 1);
+      await cdp.send('Input.dispatchTouchEvent', { type: 'touchMove', touchPoints: first });
+      await nextFrame(page);
+    }
+    if (alone > 0) {
+      const landing = points(alone / steps).map((p, id) => (id === 0 ? p : { ...points(0)[id] }));
+      await cdp.send('Input.dispatchTouchEvent', { type: 'touchStart', touchPoints: landing });
+      await nextFrame(page);
+    }
+    for (let k = alone + 1; k <= steps; k++) {
       await cdp.send('Input.dispatchTouchEvent', { type: 'touchMove', touchPoints: points(k / steps) });
       await nextFrame(page);
     }
@@ -69,6 +82,13 @@ export async function runGesture(page, cdp, origin, g, touch) {
     await page.selectOption(g.selector, g.value);
   } else if (g.type === 'wait') {
     await page.waitForTimeout(g.ms ?? 100);
+  } else if (g.type === 'viewport') {
+    const [width, height] = g.size;
+    await page.setViewportSize({ width, height });
+    // OpenSeadragon notices the new container size at its next frame.
+    for (let k = 0; k < 4; k++) {
+      await nextFrame(page);
+    }
   } else {
     const p = at(g.at);
     await page.mouse.move(p.x, p.y);

@@ -33,7 +33,8 @@
 //   "minPixelRatio": 0.75  OpenSeadragon's minPixelRatio, passed to the page as ?minPixelRatio= (a
 //       test-only knob: 0.75 unless given, so that a zoom of 1/2 shows exactly the next coarser level;
 //       null: the page's own full detail)
-// More shot keys: "contextLoss": true (after the frame is read: lose the WebGL context, check the
+// More shot keys: "home": true (go to the home view instead of fitting a region; "region" may then be
+// left out), "contextLoss": true (after the frame is read: lose the WebGL context, check the
 // page while lost, restore it, wait until loaded and read the frame again into `out + ".restored"`),
 // "screenshot" (a PNG after the shot), "lostScreenshot" (a PNG while the context is lost), "read"
 // (CSS selectors of form controls whose values go to the shot's JSON as `values`). The shot's
@@ -70,8 +71,8 @@ function readSpec(path) {
     throw new RenderError(`${path}: needs "url" and "shots"`);
   }
   for (const [i, s] of spec.shots.entries()) {
-    if (!Array.isArray(s.light) || s.light.length !== 2 || !Array.isArray(s.region) || s.region.length !== 4
-      || typeof s.out !== 'string') {
+    if (!Array.isArray(s.light) || s.light.length !== 2 || typeof s.out !== 'string'
+      || (s.home !== true && (!Array.isArray(s.region) || s.region.length !== 4))) {
       throw new RenderError(`${path}: shot ${i} needs light [lu, lv], region [x, y, w, h] and out`);
     }
     if ((s.layer !== undefined && typeof s.layer !== 'string') || (s.mode !== undefined && typeof s.mode !== 'string')
@@ -249,7 +250,7 @@ async function main() {
     check();
     for (const shot of spec.shots) {
       requests = [];
-      await withTimeout(page.evaluate(async ({ light, region, layer, mode, params, overlays, lens }) => {
+      await withTimeout(page.evaluate(async ({ light, region, home, layer, mode, params, overlays, lens }) => {
         const l = window.lanterna;
         if (layer !== undefined) {
           await l.setActiveLayer(layer);
@@ -265,7 +266,11 @@ async function main() {
           l.setOverlaysVisible(overlays);
         }
         l.setLight(light[0], light[1]);
-        l.showImageRegion(region[0], region[1], region[2], region[3]);
+        if (home === true) {
+          l.viewer.viewport.goHome(true);
+        } else {
+          l.showImageRegion(region[0], region[1], region[2], region[3]);
+        }
         if (lens !== undefined) {
           await l.setLens(lens);
         }

@@ -135,6 +135,6 @@ export class FrameRenderer {
       }
     }
     this.overlayPass ??= new OverlayPass(this.gl);
-    this.overlayPass.draw(quads, frame.circle, frame.overlayDisplay, this.sampler(frame));
+    this.overlayPass.draw(quads, frame.circle, frame.overlayDisplay, frame.smoothing);
   }
 }

@@ -1,11 +1,11 @@
 /**
- * The overlay pass: annotation overlay tiles drawn over the frame, premultiplied source-over,
- * everywhere or only inside or outside the lens.
+ * The overlay pass: annotation overlay tiles drawn over the frame, filtered on premultiplied colour,
+ * composited source-over, everywhere or only inside or outside the lens.
  */
 import * as twgl from 'twgl.js';
 import { OVERLAY_FRAGMENT_SHADER } from '../gl/glsl/composite.glsl';
 import { QUAD_VERTEX_SHADER } from '../gl/glsl/quad.vert';
-import { U_LENS_CIRCLE, U_MASK, U_MATRIX, U_PLANES, U_TEX_SCALE } from '../gl/uniforms';
+import { U_LENS_CIRCLE, U_MASK, U_MATRIX, U_PLANES, U_SMOOTH, U_TEX_SCALE } from '../gl/uniforms';
 import type { AnnotationDisplay } from '../lens/lens-state';
 import { compileProgram } from '../gl/compile';
 import type { Mat3 } from '../math/matrix';
@@ -32,10 +32,11 @@ export class OverlayPass {
   }
 
   /**
-   * Draw `quads` onto the canvas. `circle` is the lens (null = off: overlays show everywhere).
+   * Draw `quads` onto the canvas. `circle` is the lens (null = off: overlays show everywhere);
+   * `smooth`: bilinear filtering of the premultiplied texels, else the nearest texel.
    */
   draw(quads: Iterable<OverlayQuad>, circle: DeviceCircle | null, display: AnnotationDisplay,
-    sampler: WebGLSampler): void {
+    smooth: boolean): void {
     const gl = this.gl;
     const program = this.program;
     gl.bindFramebuffer(gl.FRAMEBUFFER, null);
@@ -45,9 +46,10 @@ export class OverlayPass {
     twgl.setUniforms(program, {
       [U_LENS_CIRCLE]: circle ? [circle.x, circle.y, circle.radius] : [0, 0, 0],
       [U_MASK]: OVERLAY_MASKS[circle ? display : 'everywhere'],
+      [U_SMOOTH]: smooth ? 1 : 0,
     });
     gl.activeTexture(gl.TEXTURE0);
-    gl.bindSampler(0, sampler);
+    gl.bindSampler(0, null); // texelFetch: the shader filters
     gl.enable(gl.BLEND);
     gl.blendFunc(gl.ONE, gl.ONE_MINUS_SRC_ALPHA);
     for (const quad of quads) {

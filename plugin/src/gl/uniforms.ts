@@ -44,6 +44,8 @@ export const U_SOURCE = 'u_source';
 export const U_STEP = 'u_step';
 /** int: box pass radius. */
 export const U_RADIUS = 'u_radius';
+/** float: overlay filtering, 1 = bilinear on premultiplied colour, 0 = nearest texel. */
+export const U_SMOOTH = 'u_smooth';
 /** Vertex-to-fragment varying: texture coordinates. */
 export const V_UV = 'v_uv';
 /** Fragment output. */

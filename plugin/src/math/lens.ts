@@ -69,6 +69,29 @@ export function twoFingerLens<T extends Circle>(lens: T, from: { x: number; y: n
   return scaleLens(moveLens(lens, to.x - from.x, to.y - from.y), factor);
 }
 
+/**
+ * The lens kept inside a viewer of `width × height` CSS px: the radius at most half the short side
+ * (and at least {@link MIN_LENS_RADIUS}), the centre moved the least so that the circle fits (centred
+ * on an axis the viewer is too small for).
+ */
+export function clampLensInto<T extends Circle>(lens: T, width: number, height: number): T {
+  const radius = clampRadius(Math.min(lens.radius, Math.min(width, height) / 2));
+  const axis = (c: number, size: number): number =>
+    size <= 2 * radius ? size / 2 : Math.min(size - radius, Math.max(radius, Number.isFinite(c) ? c : size / 2));
+  return { ...lens, x: axis(lens.x, width), y: axis(lens.y, height), radius };
+}
+
+/**
+ * The lens after the viewer was resized from `before` to `after` (CSS px). OpenSeadragon keeps the
+ * view's centre and scale on a resize, so the lens keeps its offset from the viewer's centre (it stays
+ * over the same part of the image), then is clamped into the new size ({@link clampLensInto}).
+ */
+export function lensAfterResize<T extends Circle>(lens: T, before: { readonly width: number; readonly height: number },
+  after: { readonly width: number; readonly height: number }): T {
+  const moved = moveLens(lens, (after.width - before.width) / 2, (after.height - before.height) / 2);
+  return clampLensInto(moved, after.width, after.height);
+}
+
 /** The lens's bounding square `[x, y, w, h]` (CSS px). */
 export function lensBounds(lens: Circle): [number, number, number, number] {
   return [lens.x - lens.radius, lens.y - lens.radius, 2 * lens.radius, 2 * lens.radius];

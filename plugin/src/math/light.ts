@@ -69,3 +69,41 @@ export function nudgeLight(light: Light, direction: NudgeDirection, step = 0.05)
   const dv = direction === 'up' ? step : direction === 'down' ? -step : 0;
   return lightFromProjection(light.lu + du, light.lv + dv);
 }
+
+/**
+ * A light direction as angles, in degrees. Azimuth is a compass bearing in the displayed image:
+ * 0° = the light comes from the top (north, lv > 0), 90° from the right (east, lu > 0), 180° from
+ * the bottom, 270° from the left, in [0, 360). Elevation is the angle above the image plane: 90°
+ * overhead, 0° grazing (raking) light.
+ */
+export interface LightAngles {
+  readonly azimuthDeg: number;
+  readonly elevationDeg: number;
+}
+
+const DEG = 180 / Math.PI;
+
+/**
+ * The angles of a light: `azimuth = atan2(lu, lv)` (0 when the light is overhead),
+ * `elevation = atan2(lz, √(lu² + lv²))`.
+ */
+export function lightAngles(light: Light): LightAngles {
+  const r = Math.hypot(light.lu, light.lv);
+  const azimuth = r > 0 ? Math.atan2(light.lu, light.lv) * DEG : 0;
+  return {
+    azimuthDeg: azimuth < 0 ? azimuth + 360 : azimuth,
+    elevationDeg: Math.atan2(Math.max(0, light.lz), r) * DEG,
+  };
+}
+
+/**
+ * The light of an azimuth and an elevation (degrees, see {@link LightAngles}): `lu = cos(e)·sin(a)`,
+ * `lv = cos(e)·cos(a)`. The elevation is clamped to [0°, 90°]; non-finite angles count as 0
+ * (azimuth) and 90° (elevation).
+ */
+export function lightFromAngles(azimuthDeg: number, elevationDeg: number): Light {
+  const a = (Number.isFinite(azimuthDeg) ? azimuthDeg : 0) / DEG;
+  const e = Math.min(90, Math.max(0, Number.isFinite(elevationDeg) ? elevationDeg : 90)) / DEG;
+  const r = Math.cos(e);
+  return lightFromProjection(r * Math.sin(a), r * Math.cos(a));
+}

@@ -1,7 +1,8 @@
 /**
  * Pointer interaction on the viewer: a plain drag moves the light (or pans, in pan mode),
  * Shift+drag does the other; in measure mode a primary drag does neither; right- or middle-drag
- * always pans; wheel and pinch zoom (OSD default).
+ * always pans; wheel and pinch zoom (OSD default). A pinch leaves the light where it was: its first
+ * finger starts a light drag, undone when the second finger lands.
  */
 import OpenSeadragon from 'openseadragon';
 import { lightFromPointer, type Light } from '../math/light';
@@ -18,6 +19,8 @@ export interface InteractionOptions {
   getMode(): DragMode;
   /** Called with the light under the pointer (its position in the viewer element, {@link lightFromPointer}). */
   setLight(light: Light): void;
+  /** The light now (restored when a second finger turns a one-finger light drag into a pinch). */
+  getLight(): Light;
   /** True while another handler (the lens) owns the current gesture: no light, no pan. */
   claimed?(): boolean;
 }
@@ -39,6 +42,10 @@ export function attachInteraction(viewer: OpenSeadragon.Viewer, options: Interac
   const shiftOf = (e: PointerEventArgs): boolean =>
     e.shift ?? (e.originalEvent instanceof MouseEvent ? e.originalEvent.shiftKey : false);
   let lightDrag = false;
+  // The light before the current light drag: a second finger landing makes the gesture a pinch,
+  // whose first finger must not have moved the light (fingers land one after the other).
+  let lightBefore: Light | null = null;
+  const touches = new Set<number>();
 
   const light = (e: PointerEventArgs): void => {
     options.setLight(lightFromPointer(e.position.x, e.position.y, element.clientWidth, element.clientHeight));
@@ -48,12 +55,31 @@ export function attachInteraction(viewer: OpenSeadragon.Viewer, options: Interac
   const onPress = (e: PointerEventArgs): void => {
     if (claimed()) {
       lightDrag = false;
+      lightBefore = null;
       e.preventDefaultAction = true;
       return;
     }
     lightDrag = drivesLight(shiftOf(e));
+    lightBefore = lightDrag ? options.getLight() : null;
     if (lightDrag) {
       light(e);
+    }
+  };
+  const onTouchDown = (ev: PointerEvent): void => {
+    if (ev.pointerType !== 'touch') {
+      return;
+    }
+    touches.add(ev.pointerId);
+    if (touches.size >= 2 && lightBefore) {
+      options.setLight(lightBefore);
+      lightBefore = null;
+      lightDrag = false;
+    }
+  };
+  const onTouchUp = (ev: PointerEvent): void => {
+    touches.delete(ev.pointerId);
+    if (touches.size === 0) {
+      lightBefore = null;
     }
   };
   const onDrag = (e: PointerEventArgs): void => {
@@ -115,7 +141,16 @@ export function attachInteraction(viewer: OpenSeadragon.Viewer, options: Interac
     add(name, h);
   }
   element.addEventListener('contextmenu', onContextMenu);
+  const touchListeners: [string, (ev: PointerEvent) => void][] = [
+    ['pointerdown', onTouchDown], ['pointerup', onTouchUp], ['pointercancel', onTouchUp],
+  ];
+  for (const [type, fn] of touchListeners) {
+    element.addEventListener(type, fn as EventListener, { capture: true });
+  }
   return () => {
+    for (const [type, fn] of touchListeners) {
+      element.removeEventListener(type, fn as EventListener, { capture: true });
+    }
     for (const [name, h] of handlers) {
       remove(name, h);
     }

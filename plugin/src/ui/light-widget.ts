@@ -2,7 +2,7 @@
  * The light widget: a disc showing the light direction (the dot is (lu, lv) on the unit disk).
  * Drag on it to move the light; when it has focus, the arrow keys nudge the light.
  */
-import { lightFromPointer, nudgeLight, type Light, type NudgeDirection } from '../math/light';
+import { lightAngles, lightFromPointer, nudgeLight, type Light, type NudgeDirection } from '../math/light';
 
 /** The widget's DOM and its update function. */
 export interface LightWidget {
@@ -27,6 +27,23 @@ const KEYS: Readonly<Record<string, NudgeDirection>> = {
 };
 
 /**
+ * The widget's ARIA slider values for a light. A slider has one value, so it is the azimuth (a
+ * compass bearing, 0–359°, {@link lightAngles}); `aria-valuetext` reads both angles, e.g.
+ * "azimuth 90°, elevation 30°" (rounded to whole degrees).
+ */
+export function lightAria(light: Light): Readonly<Record<'aria-valuemin' | 'aria-valuemax' | 'aria-valuenow'
+  | 'aria-valuetext', string>> {
+  const { azimuthDeg, elevationDeg } = lightAngles(light);
+  const azimuth = Math.round(azimuthDeg) % 360;
+  return {
+    'aria-valuemin': '0',
+    'aria-valuemax': '359',
+    'aria-valuenow': String(azimuth),
+    'aria-valuetext': `azimuth ${azimuth}°, elevation ${Math.round(elevationDeg)}°`,
+  };
+}
+
+/**
  * Create the widget inside `parent` (bottom-left corner).
  */
 export function createLightWidget(parent: HTMLElement, options: LightWidgetOptions): LightWidget {
@@ -36,6 +53,7 @@ export function createLightWidget(parent: HTMLElement, options: LightWidgetOptio
   disc.tabIndex = 0;
   disc.setAttribute('role', 'slider');
   disc.setAttribute('aria-label', 'Light direction: drag, or use the arrow keys');
+  disc.setAttribute('aria-roledescription', 'light direction');
   disc.title = 'Light direction: drag here, or focus and use the arrow keys';
   Object.assign(disc.style, {
     position: 'absolute', left: '12px', bottom: '12px', width: `${size}px`, height: `${size}px`,
@@ -102,7 +120,9 @@ export function createLightWidget(parent: HTMLElement, options: LightWidgetOptio
   const update = (light: Light): void => {
     dot.style.left = `${50 + 50 * light.lu}%`;
     dot.style.top = `${50 - 50 * light.lv}%`;
-    disc.setAttribute('aria-valuetext', `lu ${light.lu.toFixed(2)}, lv ${light.lv.toFixed(2)}`);
+    for (const [name, value] of Object.entries(lightAria(light))) {
+      disc.setAttribute(name, value);
+    }
   };
   update(options.getLight());
   return {

@@ -10,7 +10,8 @@ import type { RelightLayer } from '../iiif/relight-service';
 import type { ImageGeometry } from '../iiif/image-info';
 import { wholeLevelTiling, type WholeLevelView } from '../iiif/whole-levels';
 import { layerKindOf, type LayerKind } from '../layers/layer-kinds';
-import { currentLevel, imagePxPerDevicePx, maxLevelOf } from '../math/levels';
+import { HOME_MAX_PIXEL_RATIO } from '../math/home-zoom';
+import { currentLevel, homeLevelOf } from '../math/levels';
 import { addBundleItem } from '../tiles/add-item';
 import { minPixelRatioOf } from './osd-viewer';
 
@@ -130,23 +131,29 @@ export class LayerSlots {
 
 /**
  * The on-screen width of a layer item about to open (layers are 1 wide in viewport units): at the
- * current zoom, or for the first item at the home view OpenSeadragon will fit it to.
+ * current zoom, or for the first item at the home view (fitted, at most `HOME_MAX_PIXEL_RATIO` CSS px
+ * per image px: `math/home-zoom.ts`).
  */
 function openingView(viewer: OpenSeadragon.Viewer, geometry: ImageGeometry): WholeLevelView {
   const container = viewer.viewport.getContainerSize();
   const displayWidth = viewer.world.getItemCount() === 0
-    ? Math.min(container.x, container.y * geometry.width / geometry.height)
+    ? Math.min(container.x, container.y * geometry.width / geometry.height, HOME_MAX_PIXEL_RATIO * geometry.width)
     : viewer.viewport.getZoom(false) * container.x;
   return { displayWidth, minPixelRatio: minPixelRatioOf(viewer) };
 }
 
-/** The current level (`docs/annotations.md`), from the zoom of `slot`'s item (0 when it is not open). */
+/**
+ * The current level (`docs/annotations.md`, "Levels"): counted from the home view, where it is the
+ * coarsest level of `slot`'s overlay (of its pyramid when it has none); 0 when the layer is not open.
+ */
 export function levelOf(viewer: OpenSeadragon.Viewer, slot: LayerSlot | null): number {
-  const item = slot?.tiledImage;
   const loaded = slot?.loaded;
-  if (!item || !loaded) {
+  if (!slot?.tiledImage || !loaded) {
     return 0;
   }
-  const zoom = item.viewportToImageZoom(viewer.viewport.getZoom(true));
-  return currentLevel(imagePxPerDevicePx(zoom, OpenSeadragon.pixelDensityRatio), maxLevelOf(loaded.geometry.scaleFactors));
+  return currentLevel({
+    zoom: viewer.viewport.getZoom(true),
+    homeZoom: viewer.viewport.getHomeZoom(),
+    homeLevel: homeLevelOf(slot.info.overlays.map((o) => o.level), loaded.geometry.scaleFactors),
+  });
 }

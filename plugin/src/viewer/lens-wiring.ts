@@ -8,7 +8,7 @@ import type { Compositor } from '../drawer/compositor';
 import type { RelightLayer } from '../iiif/relight-service';
 import { LensController } from '../lens/lens-controller';
 import { updateLens, type LensState, type LensUpdate } from '../lens/lens-state';
-import type { Circle } from '../math/lens';
+import { lensAfterResize, type Circle } from '../math/lens';
 import { DEFAULT_RENDER_MODE, isRenderMode, type RenderMode } from '../render/modes';
 import type { RenderParams } from '../render/params';
 import type { DragMode } from '../ui/interaction';
@@ -41,7 +41,10 @@ export class LensWiring {
   readonly #gestures: LensGestures;
   readonly #items: LensController;
   readonly #ring: LensRing;
+  readonly #viewer: OpenSeadragon.Viewer;
   #lens: LensState;
+  /** The viewer's size (CSS px) the lens was last placed in. */
+  #size: { width: number; height: number };
 
   constructor(viewer: OpenSeadragon.Viewer, options: LensWiringOptions) {
     this.#options = options;
@@ -66,7 +69,25 @@ export class LensWiring {
       onShown: () => { viewer.forceRedraw(); },
     });
     this.#ring = createLensRing(viewer.element);
+    this.#viewer = viewer;
+    const size = viewer.viewport.getContainerSize();
+    this.#size = { width: size.x, height: size.y };
+    viewer.addHandler('resize', this.#onResize);
   }
+
+  /** Keep the lens over the same part of the view, and inside the viewer, on every resize. */
+  readonly #onResize = (e: { newContainerSize: OpenSeadragon.Point }): void => {
+    const after = { width: e.newContainerSize.x, height: e.newContainerSize.y };
+    const before = this.#size;
+    this.#size = after;
+    if (after.width <= 0 || after.height <= 0) {
+      return;
+    }
+    const { center: [x, y], radius } = this.#lens;
+    const next = lensAfterResize({ x, y, radius }, before, after);
+    this.#lens = { ...this.#lens, center: [next.x, next.y], radius: next.radius };
+    void this.apply();
+  };
 
   /** True while a gesture belongs to the lens: no light, no pan. */
   claimed(): boolean {
@@ -129,6 +150,7 @@ export class LensWiring {
 
   /** Remove the gestures and the ring. */
   destroy(): void {
+    this.#viewer.removeHandler('resize', this.#onResize);
     this.#gestures.destroy();
     this.#ring.destroy();
   }

@@ -1,9 +1,10 @@
 /**
  * The OpenSeadragon viewer a Lanterna viewer runs on: its options (the Lanterna drawer, no
- * navigator, level selection, the tile cache's size) and access to its drawer.
+ * navigator, level selection, the tile cache's size), the capped home zoom and access to its drawer.
  */
 import OpenSeadragon from 'openseadragon';
 import { RelightDrawer, WebGLUnavailableError } from '../drawer/relight-drawer';
+import { homeZoom } from '../math/home-zoom';
 import { cacheTileCount } from './cache-budget';
 
 /** OpenSeadragon's own `minPixelRatio`: full detail (up to 2 image px per screen px). */
@@ -21,7 +22,7 @@ export function createOsdViewer(element: HTMLElement, osd?: Partial<OpenSeadrago
   if (!RelightDrawer.isSupported()) {
     throw new WebGLUnavailableError('WebGL2 is not available in this browser, so the Lanterna drawer cannot start');
   }
-  return OpenSeadragon({
+  const viewer = OpenSeadragon({
     element,
     drawer: RelightDrawer,
     crossOriginPolicy: 'Anonymous',
@@ -49,6 +50,36 @@ export function createOsdViewer(element: HTMLElement, osd?: Partial<OpenSeadrago
     silenceMultiImageWarnings: true,
     ...osd,
   });
+  if (osd?.defaultZoomLevel === undefined) {
+    capHomeZoom(viewer);
+  }
+  return viewer;
+}
+
+/**
+ * Cap the home zoom at `HOME_MAX_PIXEL_RATIO` CSS px per image px (`math/home-zoom.ts`), so a
+ * small image shows small and centred: OpenSeadragon's `defaultZoomLevel` is set, before each
+ * `goHome` (the `home` event comes before the home bounds are read) and on each resize, to the capped
+ * zoom when it is below the fitting one (0, OpenSeadragon's fit, otherwise).
+ */
+function capHomeZoom(viewer: OpenSeadragon.Viewer): void {
+  const update = (): void => {
+    const viewport = viewer.viewport as OpenSeadragon.Viewport & { defaultZoomLevel: number };
+    const item = viewer.world.getItemAt(0) as OpenSeadragon.TiledImage | undefined;
+    if (!item) {
+      return;
+    }
+    viewport.defaultZoomLevel = 0;
+    const fitZoom = viewport.getHomeZoom();
+    const unit = new OpenSeadragon.Point(1, 0);
+    const containerWidth = viewport.deltaPixelsFromPointsNoRotate(unit, false).x / viewport.getZoom(false);
+    const capped = homeZoom({
+      fitZoom, containerWidth, imagePxPerUnit: item.getContentSize().x / item.getBounds().width,
+    });
+    viewport.defaultZoomLevel = capped < fitZoom ? capped : 0;
+  };
+  viewer.addHandler('home', update);
+  viewer.addHandler('resize', update);
 }
 
 /**

@@ -122,6 +122,7 @@ export function createViewer(options: CreateViewerOptions): LanternaViewer {
   const detach = attachInteraction(viewer, {
     getMode: () => dragMode,
     setLight: (l) => { applyLight(l); },
+    getLight: () => light,
     claimed: () => lens.claimed(),
   });
 

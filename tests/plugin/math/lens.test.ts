@@ -1,6 +1,6 @@
 import { describe, expect, it } from 'vitest';
 import {
-  boundingBox, clampRadius, LENS_BORDER_PX, lensBounds, lensHit, lensInDevicePixels, MIN_LENS_RADIUS, moveLens,
+  boundingBox, clampLensInto, clampRadius, lensAfterResize, LENS_BORDER_PX, lensBounds, lensHit, lensInDevicePixels, MIN_LENS_RADIUS, moveLens,
   resizeLensTo, scaleLens, twoFingerLens, wheelFactor,
 } from '../../../plugin/src/math/lens';
 
@@ -54,5 +54,38 @@ describe('lens moves and sizes', () => {
     expect(lensBounds(lens)).toEqual([50, 30, 100, 100]);
     expect(boundingBox([[1, 5], [4, 2], [3, 3]], 1)).toEqual([0, 1, 5, 5]);
     expect(lensInDevicePixels(lens, 2, 600)).toEqual({ x: 200, y: 600 - 160, radius: 100 });
+  });
+});
+
+describe('the lens on a resize', () => {
+  const inside = (c: { x: number; y: number; radius: number }, w: number, h: number): boolean =>
+    c.x - c.radius >= 0 && c.y - c.radius >= 0 && c.x + c.radius <= w && c.y + c.radius <= h;
+
+  it('leaves a lens that fits alone', () => {
+    expect(clampLensInto(lens, 640, 480)).toEqual(lens);
+  });
+
+  it('moves a lens partly outside back in, the least', () => {
+    expect(clampLensInto({ x: 630, y: 20, radius: 50 }, 640, 480)).toEqual({ x: 590, y: 50, radius: 50 });
+    expect(clampLensInto({ x: -500, y: 900, radius: 50 }, 640, 480)).toEqual({ x: 50, y: 430, radius: 50 });
+  });
+
+  it('shrinks a lens larger than the viewer, and keeps its other fields', () => {
+    const big = { x: 10, y: 10, radius: 400, opacity: 0.5 };
+    expect(clampLensInto(big, 640, 480)).toEqual({ x: 240, y: 240, radius: 240, opacity: 0.5 });
+    const tiny = clampLensInto(big, 20, 20); // smaller than the smallest lens: centred
+    expect(tiny).toEqual({ x: 10, y: 10, radius: MIN_LENS_RADIUS, opacity: 0.5 });
+  });
+
+  it('keeps the offset from the centre when a phone turns to landscape', () => {
+    // 390×844 portrait, the lens at its initial place (the centre, a fifth of the short side)
+    const portrait = { x: 195, y: 422, radius: 78 };
+    const landscape = lensAfterResize(portrait, { width: 390, height: 844 }, { width: 844, height: 390 });
+    expect(landscape).toEqual({ x: 422, y: 195, radius: 78 });
+    expect(inside(landscape, 844, 390)).toBe(true);
+    const low = lensAfterResize({ x: 100, y: 800, radius: 60 }, { width: 390, height: 844 },
+      { width: 844, height: 390 });
+    expect(inside(low, 844, 390)).toBe(true);
+    expect(low.x).toBe(100 + 227); // the offset from the centre is kept where it fits
   });
 });

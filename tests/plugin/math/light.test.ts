@@ -1,5 +1,7 @@
 import { describe, expect, it } from 'vitest';
-import { lightFromPointer, lightFromProjection, nudgeLight, OVERHEAD_LIGHT } from '../../../plugin/src/math/light';
+import {
+  lightAngles, lightFromAngles, lightFromPointer, lightFromProjection, nudgeLight, OVERHEAD_LIGHT,
+} from '../../../plugin/src/math/light';
 
 describe('lightFromPointer', () => {
   it('maps the element centre to the overhead light', () => {
@@ -53,5 +55,49 @@ describe('nudgeLight', () => {
     expect(nudgeLight(OVERHEAD_LIGHT, 'down', 0.1).lv).toBeCloseTo(-0.1, 12);
     const edge = nudgeLight(lightFromProjection(1, 0), 'right', 0.5);
     expect(edge.lu).toBe(1);
+  });
+});
+
+describe('lightAngles and lightFromAngles', () => {
+  it('reads compass bearings: north up, east right, clockwise', () => {
+    const cases: [number, number, number][] = [[0, 1, 0], [1, 0, 90], [0, -1, 180], [-1, 0, 270],
+      [Math.SQRT1_2, Math.SQRT1_2, 45], [-Math.SQRT1_2, Math.SQRT1_2, 315]];
+    for (const [lu, lv, azimuth] of cases) {
+      const a = lightAngles(lightFromProjection(lu, lv));
+      expect(a.azimuthDeg).toBeCloseTo(azimuth, 9);
+      expect(a.elevationDeg).toBeCloseTo(0, 5); // on the unit circle: grazing light
+    }
+  });
+
+  it('gives 90° elevation overhead and the angle above the plane otherwise', () => {
+    expect(lightAngles(OVERHEAD_LIGHT)).toEqual({ azimuthDeg: 0, elevationDeg: 90 });
+    const l = lightFromProjection(0.5, 0); // lz = √0.75: 30° from the vertical
+    expect(lightAngles(l).elevationDeg).toBeCloseTo(60, 9);
+    expect(lightAngles(l).azimuthDeg).toBeCloseTo(90, 9);
+  });
+
+  it('inverts lightAngles', () => {
+    for (const [lu, lv] of [[0.3, 0.4], [-0.7, 0.1], [0.05, -0.9], [-0.2, -0.2], [0.6, 0.8]]) {
+      const l = lightFromProjection(lu ?? 0, lv ?? 0);
+      const { azimuthDeg, elevationDeg } = lightAngles(l);
+      const back = lightFromAngles(azimuthDeg, elevationDeg);
+      expect(back.lu).toBeCloseTo(l.lu, 9);
+      expect(back.lv).toBeCloseTo(l.lv, 9);
+      expect(back.lz).toBeCloseTo(l.lz, 9);
+    }
+  });
+
+  it('makes the raking presets and clamps the elevation', () => {
+    const east = lightFromAngles(90, 30);
+    expect(east.lu).toBeCloseTo(Math.cos(Math.PI / 6), 12);
+    expect(east.lv).toBeCloseTo(0, 12);
+    expect(east.lz).toBeCloseTo(0.5, 9);
+    const north = lightFromAngles(0, 0);
+    expect([north.lu, north.lv]).toEqual([0, 1]);
+    const above = lightFromAngles(200, 120); // elevation clamped to 90°: overhead
+    expect(above.lz).toBeCloseTo(1, 12);
+    expect(Math.hypot(above.lu, above.lv)).toBeCloseTo(0, 12);
+    expect(lightFromAngles(Number.NaN, Number.NaN).lz).toBe(1);
+    expect(lightFromAngles(-90, 0).lu).toBeCloseTo(-1, 12); // −90° = 270° (west)
   });
 });

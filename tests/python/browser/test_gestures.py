@@ -33,6 +33,9 @@ def gesture_meta(lens_dataset: Dataset) -> dict[str, tuple[dict[str, Any], dict[
                                 "to": [[c[0] + 10, c[1] + 10], [c[0] + 50, c[1] + 10]]}],
         "two fingers outside": [{"type": "touch", "from": [[150, 450], [190, 450]],
                                  "to": [[140, 440], [212, 460]]}],
+        # the first finger lands and moves alone for 3 of 8 steps before the second lands
+        "pinch, fingers one after the other": [{"type": "touch", "from": [[160, 320], [220, 370]],
+                                                "to": [[120, 280], [260, 410]], "alone": 3}],
         "mouse inside": [{"type": "mouse", "from": [c[0] + 5, c[1]], "to": [c[0] - 25, c[1] - 15]}],
         "mouse border": [{"type": "mouse", "from": [c[0] + 40, c[1]], "to": [c[0] + 70, c[1]]}],
         "pen inside": [{"type": "pen", "from": [c[0], c[1] + 5], "to": [c[0] + 30, c[1] + 45]}],
@@ -89,6 +92,16 @@ def test_two_fingers_outside_the_lens_pan_and_zoom_the_image(
     change = moved(before, after)
     assert change["view"] and not change["lens"] and not change["radius"]
     assert after["view"]["zoom"] > before["view"]["zoom"] * 1.2  # fingers 40 → 72 px apart
+
+
+@pytest.mark.parametrize("gesture", ["two fingers outside", "pinch, fingers one after the other"])
+def test_a_pinch_leaves_the_light_where_it_was(
+        gesture_meta: dict[str, tuple[dict[str, Any], dict[str, Any]]], gesture: str) -> None:
+    """The first finger of a pinch lands alone (it starts a light drag): the light comes back."""
+    before, after = gesture_meta[gesture]
+    change = moved(before, after)
+    assert change["view"], "the pinch zooms the image"
+    assert after["light"] == before["light"], (before["light"], after["light"])
 
 
 def test_gestures_move_and_scale_the_lens_by_the_fingers(

@@ -26,6 +26,7 @@ from tests.python.fixtures.lens import (
     assert_close,
     disk,
     level_channels,
+    level_image,
     over,
     overlay_at,
     reference,
@@ -49,34 +50,36 @@ def zoom_shots(lens_dataset: Dataset) -> Iterator[list[tuple[LensShot, npt.NDArr
     yield list(zip(shots, frames, strict=True))
 
 
-def test_overlay_of_level_k_is_drawn_only_at_zoom_k(
+#: zoom factor f (zoom 1/f) → the current level: the home view (1/4) shows the coarsest level, 1,
+#: and each doubling of the zoom one level finer (docs/annotations.md, "Levels").
+LEVEL_AT = {4: 1, 2: 0, 1: 0}
+
+
+def test_overlay_of_the_current_level_is_drawn(
         lens_dataset: Dataset, zoom_shots: list[tuple[LensShot, npt.NDArray[np.uint8]]]) -> None:
     everywhere = np.ones((VIEW[1], VIEW[0]), bool)
     for (_shot, frame), factor in zip(zoom_shots[:3], (1, 2, 4), strict=True):
-        level = factor.bit_length() - 1
+        level = LEVEL_AT[factor]
         ref = reference(lens_dataset, "base", factor)
-        if level in PATCHES:
-            ov = overlay_at(lens_dataset, level, factor)
-            opaque = ov[..., 3] == 1
-            assert opaque.sum() > 2000, "the view must show a good part of the patch"
-            assert_close(frame, over(ref, ov), everywhere, f"zoom 1/{factor} with its overlay")
-            colour = np.array(PATCHES[level][0])
-            assert (np.abs(frame[opaque][:, :3].astype(int) - colour) <= TOLERANCE).all()
-        else:
-            assert_close(frame, np.round(ref * 255).astype(np.int16), everywhere,
-                         f"zoom 1/{factor}: no overlay at level {level}")
-        # (the whole frame matches the reference with only level k's image: no other level shows)
+        ov = overlay_at(lens_dataset, level, factor)
+        opaque = ov[..., 3] == 1
+        assert opaque.sum() > 1000, "the view must show a good part of the patch"
+        assert_close(frame, over(ref, ov), everywhere,
+                     f"zoom 1/{factor} with level {level}'s overlay")
+        colour = np.array(PATCHES[level][0])
+        assert (np.abs(frame[opaque][:, :3].astype(int) - colour) <= TOLERANCE).all()
+        # (the whole frame matches the reference with only that level's image: no other level shows)
 
 
 def test_only_the_current_levels_overlay_loads(
         zoom_shots: list[tuple[LensShot, npt.NDArray[np.uint8]]]) -> None:
     """Overlay items of other levels have opacity 0: none of their tiles or info.json loads."""
     info = re.compile(r"/iiif/(?P<image>[A-Za-z0-9_-]+)/info\.json")
-    for (shot, _), level in zip(zoom_shots[:3], (0, 1, 2), strict=True):
+    for (shot, _), factor in zip(zoom_shots[:3], (1, 2, 4), strict=True):
         urls = shot.meta()["requests"]
         fetched = {m["image"] for m in (TILE_URL.search(u) or info.search(u) for u in urls) if m}
         overlays = {i for i in fetched if "_ov" in i}
-        assert overlays == ({f"base_ov{level}"} if level in PATCHES else set()), (level, overlays)
+        assert overlays == {f"base_ov{LEVEL_AT[factor]}"}, (factor, overlays)
 
 
 def test_overlays_can_be_hidden(lens_dataset: Dataset,
@@ -90,13 +93,59 @@ def test_overlays_can_be_hidden(lens_dataset: Dataset,
 def test_hypertext_follows_the_zoom(
         zoom_shots: list[tuple[LensShot, npt.NDArray[np.uint8]]]) -> None:
     states = [shot.meta() for shot, _ in zoom_shots[:3]]
-    assert [s["overlayState"]["level"] for s in states] == [0, 1, 2]
-    assert [s["overlayState"]["available"] for s in states] == [True, True, False]
-    assert [s["overlayState"]["short"] for s in states] == ["Glyph detail", "Whole panel", ""]
-    assert [s["hypertext"] for s in states] == ["Glyph detail", "Whole panel",
-                                                "No annotation at this level"]
+    assert [s["overlayState"]["level"] for s in states] == [0, 0, 1]
+    assert [s["overlayState"]["available"] for s in states] == [True, True, True]
+    shorts = ["Glyph detail", "Glyph detail", "Whole panel"]
+    assert [s["overlayState"]["short"] for s in states] == shorts
+    assert [s["hypertext"] for s in states] == ["Glyph detail", "Glyph detail", "Whole panel"]
     long = states[0]["overlayState"]["long"]
     assert long == "<p>A <b>glyph</b>.</p>", "the long text is sanitised (no script)"
+
+
+# -- magnified overlays -------------------------------------------------------------------------
+#: 32×24 image px around the left edge of the level-0 patch (its 6-px alpha ramp starts at x = 160),
+#: inside one 128-px overlay tile, magnified 8× into the 256×192 view.
+MAGNIFIED = (152, 150, 32, 24)
+
+
+def bilinear(img: npt.NDArray[np.float32], region: tuple[int, int, int, int],
+             size: tuple[int, int]) -> npt.NDArray[np.float32]:
+    """``img`` sampled bilinearly at the centres of a ``size`` grid of device px over ``region``."""
+    x0, y0, w, h = region
+    tx = x0 + (np.arange(size[0]) + 0.5) * w / size[0] - 0.5
+    ty = y0 + (np.arange(size[1]) + 0.5) * h / size[1] - 0.5
+    ix, iy = np.floor(tx).astype(int), np.floor(ty).astype(int)
+    fx, fy = (tx - ix)[None, :, None], (ty - iy)[:, None, None]
+    def at(dy: int, dx: int) -> npt.NDArray[np.float32]:
+        return img[(iy + dy)[:, None], (ix + dx)[None, :]]
+    out: npt.NDArray[np.float32] = ((at(0, 0) * (1 - fx) + at(0, 1) * fx) * (1 - fy)
+                                    + (at(1, 0) * (1 - fx) + at(1, 1) * fx) * fy)
+    return out
+
+
+def test_a_magnified_overlay_is_filtered_smoothly_on_premultiplied_colour(
+        lens_dataset: Dataset) -> None:
+    out = lens_dataset.root / "magnified"
+    out.mkdir()
+    shots = [LensShot(LIGHT, MAGNIFIED, out / "shown.rgba", overlays=True),
+             LensShot(LIGHT, MAGNIFIED, out / "hidden.rgba", overlays=False)]
+    shown, hidden = shots_and_frames(lens_dataset, shots)
+    assert shots[0].meta()["overlayState"]["level"] == 0
+    img = level_image(lens_dataset.dir / "iiif" / "base_ov0", 1).astype(np.float32) / 255
+    a = img[..., 3:4]
+    premultiplied = bilinear(np.concatenate([img[..., :3] * a, a], -1), MAGNIFIED, VIEW)
+    base = hidden[..., :3].astype(np.float32) / 255
+    alpha = premultiplied[..., 3:4]
+    expected = np.round((premultiplied[..., :3] + base * (1 - alpha)) * 255).astype(np.int16)
+    assert_close(shown, expected, np.ones(VIEW[::-1], bool), "the magnified overlay edge")
+    # a smooth ramp: many distinct partial coverages along a row, not a staircase of 0 and full
+    row = alpha[VIEW[1] // 2, :, 0]
+    assert len(np.unique(np.round(row[(row > 0.02) & (row < 0.98)], 3))) >= 40
+    # filtering straight colour instead would darken the edge beyond the tolerance (the old fringe)
+    straight = bilinear(img, MAGNIFIED, VIEW)
+    s_alpha = straight[..., 3:4]
+    fringe = np.round((straight[..., :3] * s_alpha + base * (1 - s_alpha)) * 255)
+    assert np.abs(fringe - expected).max() > 3 * TOLERANCE
 
 
 # -- lens ----------------------------------------------------------------------------------------
