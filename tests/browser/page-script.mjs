@@ -17,6 +17,8 @@
 //   {"download": "CSS selector", "path": "/abs/out"}  click it and save the download it starts
 //   {"key": "Tab"}  press a key
 //   {"screenshot": "/abs/out.png"}
+// After the last step the page is left to settle (lanterna.whenFullyLoaded, so that no request is cut
+// off) unless spec "settle" is false.
 // result.json also holds "requests" (method, URL, headers and body of every request whose URL
 // matches spec "record", a regex), "consoleErrors" and "pageErrors". Exits non-zero on a page error,
 // a console error not allowed, or a step taking longer than timeoutMs.
@@ -119,6 +121,9 @@ async function main() {
       if (pageErrors.length > 0) {
         throw new Error(pageErrors.join('\n'));
       }
+    }
+    if (spec.settle !== false) {
+      await withTimeout(page.evaluate(() => window.lanterna?.whenFullyLoaded?.()), timeoutMs, 'settling');
     }
   } catch (error) {
     failure = error;

@@ -1,6 +1,6 @@
 /**
  * The page's layout: the panel beside the viewer on wide screens, a bottom sheet on small ones
- * (collapsed there by default), a toggle button for it, and Home fitting the object into the part of
+ * (collapsed there by default on touch screens), a toggle button for it, and Home fitting the object into the part of
  * the viewer the toolbar and the panel leave free.
  */
 import type { LanternaViewer } from '../index';
@@ -8,6 +8,8 @@ import { freeArea, homeRegion, type Box } from './home-fit';
 
 /** Small screens: phones in portrait (narrow) or landscape (short). */
 export const SMALL_SCREEN = '(max-width: 600px), (max-height: 430px)';
+/** Touch screens: the panel starts collapsed on small ones (a small desktop window keeps it open). */
+export const TOUCH_SCREEN = '(pointer: coarse)';
 
 /** The page layout's controls. */
 export interface Layout {
@@ -33,7 +35,9 @@ function boxIn(el: HTMLElement | null, origin: DOMRect): Box | null {
 export function createLayout(lanterna: LanternaViewer, panel: HTMLElement, toolbar: HTMLElement,
   toggle: HTMLButtonElement): Layout {
   const small = window.matchMedia(SMALL_SCREEN);
-  let open = !small.matches;
+  const touch = window.matchMedia(TOUCH_SCREEN);
+  const collapsed = (): boolean => small.matches && touch.matches;
+  let open = !collapsed();
   const apply = (): void => {
     panel.hidden = !open;
     document.body.classList.toggle('lanterna-small', small.matches);
@@ -45,7 +49,7 @@ export function createLayout(lanterna: LanternaViewer, panel: HTMLElement, toolb
     apply();
   });
   small.addEventListener('change', () => {
-    open = !small.matches;
+    open = !collapsed();
     apply();
   });
   apply();

@@ -1,5 +1,6 @@
 /**
- * "Save to dataset": offered when the server says `GET {server}/api/` → `{"authoring": true}`; asks
+ * "Save to dataset": offered when the server says `GET {server}/api/` → `{"authoring": true}` (asked
+ * once the library has been edited, so that a visitor's page makes no request it does not need); asks
  * for the authoring token once (a password field; kept in sessionStorage only) and `PUT`s the library
  * to `{server}/api/datasets/{name}/presets` with `Authorization: Bearer …`.
  */
@@ -13,8 +14,11 @@ export const TOKEN_KEY = 'lanterna.authoringToken';
 /** The save control: its element (hidden when the server does not allow authoring). */
 export interface DatasetSave {
   readonly element: HTMLElement;
-  /** Resolves once the server was asked whether it allows authoring. */
-  readonly checked: Promise<boolean>;
+  /**
+   * Ask the server (once) whether it allows authoring and show the control if it does; the element's
+   * `data-checked` is then "true".
+   */
+  probe(): void;
 }
 
 async function allowsAuthoring(urls: AuthoringUrls): Promise<boolean> {
@@ -137,7 +141,17 @@ export function createDatasetSave(lanterna: Pick<LanternaViewer, 'getPresetLibra
       sendToken();
     }
   });
-  const checked = urls ? allowsAuthoring(urls) : Promise.resolve(false);
-  void checked.then((allowed) => { element.hidden = !allowed; });
-  return { element, checked };
+  let probed = false;
+  const probe = (): void => {
+    if (probed) {
+      return;
+    }
+    probed = true;
+    const checked = urls ? allowsAuthoring(urls) : Promise.resolve(false);
+    void checked.then((allowed) => {
+      element.hidden = !allowed;
+      element.dataset.checked = 'true';
+    });
+  };
+  return { element, probe };
 }

@@ -2,7 +2,7 @@
  * The panel's presets section (`docs/viewer.md`): the library's base and lens lists (a click applies
  * an entry; × removes it), "Save as preset" (a name, the list, and for the base whether the view is
  * kept), export and import of the library as JSON (file picker, or a file dropped on the page) and,
- * when the server allows it, saving the library into the dataset. Plain DOM over the viewer's API.
+ * once the library has been edited and if the server allows it, saving the library into the dataset. Plain DOM over the viewer's API.
  */
 import type { LanternaViewer } from '../api/viewer-api';
 import { addPreset, type PresetLibrary, type PresetTarget } from '../presets/library';
@@ -158,12 +158,16 @@ export function createPresetsPanel(lanterna: LanternaViewer, parent: HTMLElement
   section.append(legend, lists, saveForm(lanterna, onError, status), files, dataset.element, statusLine);
 
   let shown: PresetLibrary | null = null;
+  const initial = lanterna.getPresetLibrary();
   const refresh = (): void => {
     const library = lanterna.getPresetLibrary();
     if (library === shown) {
       return;
     }
     shown = library;
+    if (library !== initial) {
+      dataset.probe(); // something to save: may the server take it?
+    }
     const parts: HTMLElement[] = [];
     for (const target of ['base', 'lens'] as const) {
       const title = document.createElement('h3');
