@@ -2,7 +2,8 @@
 
 The lens's parameter sliders, saving the view as a preset and applying it, export and import of the
 library, a broken import, saving to the dataset (against a fake authoring API), the Annotations
-button, the URL's layer/mode fallback, the loading bar and the hidden rows of a single-layer dataset.
+button, the URL's layer/mode fallback, the loading bar and the hidden rows of a single-layer
+dataset.
 """
 
 from __future__ import annotations
@@ -34,7 +35,8 @@ REGION = (200, 150, 480, 360)
 def page_url(lens_dataset: Dataset) -> Iterator[str]:
     server = LiveServer(lens_dataset.root)
     try:
-        yield f"{server.url}/viewer/?manifest={server.url}/datasets/lens/manifest.json&minPixelRatio=0.75"
+        manifest = f"{server.url}/datasets/lens/manifest.json"
+        yield f"{server.url}/viewer/?manifest={manifest}&minPixelRatio=0.75"
     finally:
         server.close()
 
@@ -54,7 +56,8 @@ def differs(a: npt.NDArray[np.uint8], b: npt.NDArray[np.uint8]) -> int:
     return int((np.abs(a.astype(int) - b.astype(int)).max(axis=-1) > 2).sum())
 
 
-def test_lens_sliders_change_the_lens_pixels_as_set_lens_does(page_url: str, tmp_path: Path) -> None:
+def test_lens_sliders_change_the_lens_pixels_as_set_lens_does(page_url: str,
+                                                              tmp_path: Path) -> None:
     steps = [
         READY,
         evaluate(f"() => window.lanterna.showImageRegion({', '.join(map(str, REGION))})"),
@@ -66,9 +69,11 @@ def test_lens_sliders_change_the_lens_pixels_as_set_lens_does(page_url: str, tmp
         slide("lens-lightIntensity", 1.7),
         FRAME,
         evaluate("() => window.lanterna.getLens().params"),
-        evaluate("() => window.lanterna.setLens({ params: { specExponent: 75, lightIntensity: 1 } })"),
+        evaluate("() => window.lanterna.setLens({ params: "
+                 "{ specExponent: 75, lightIntensity: 1 } })"),
         FRAME,
-        evaluate("() => window.lanterna.setLens({ params: { specExponent: 20, lightIntensity: 1.7 } })"),
+        evaluate("() => window.lanterna.setLens({ params: "
+                 "{ specExponent: 20, lightIntensity: 1.7 } })"),
         FRAME,
         evaluate("() => [document.querySelector('input[name=lens-specExponent]').value, "
                  "document.querySelector('.lanterna-lens-controls output').textContent]"),
@@ -97,7 +102,8 @@ SAVE_STEPS: list[dict[str, Any]] = [
     # Change everything the preset holds, then apply it from its list.
     evaluate("""async () => {
       const l = window.lanterna;
-      l.setRenderMode('color'); l.resetRenderParams(); l.setLight(0, 0); l.showImageRegion(0, 0, 1024, 768);
+      l.setRenderMode('color'); l.resetRenderParams(); l.setLight(0, 0);
+      l.showImageRegion(0, 0, 1024, 768);
       await l.whenFullyLoaded();
       return l.getPresetLibrary();
     }"""),
@@ -130,8 +136,9 @@ def test_export_then_import_gives_the_same_library(page_url: str, tmp_path: Path
         *SAVE_STEPS[:7],
         {"download": "button[name=presets-export]", "path": str(exported)},
         evaluate("() => window.lanterna.getPresetLibrary()"),
-        evaluate("() => { window.lanterna.setPresetLibrary({ type: 'LanternaPresets', version: 1, presets: {}, "
-                 "base: [], lens: [] }); return document.querySelectorAll('.lanterna-preset-apply').length; }"),
+        evaluate("() => { window.lanterna.setPresetLibrary({ type: 'LanternaPresets', version: 1, "
+                 "presets: {}, base: [], lens: [] }); "
+                 "return document.querySelectorAll('.lanterna-preset-apply').length; }"),
         {"files": "input[name=presets-file]", "path": str(exported)},
         {"waitFor": "() => document.querySelectorAll('.lanterna-preset-apply').length === 1"},
         evaluate("() => window.lanterna.getPresetLibrary()"),
@@ -150,7 +157,8 @@ BROKEN = {"type": "LanternaPresets", "version": 1,
           "base": [{"label": "P", "preset": "p"}], "lens": []}
 
 
-def test_a_broken_import_names_the_file_and_path_and_changes_nothing(page_url: str, tmp_path: Path) -> None:
+def test_a_broken_import_names_the_file_and_path_and_changes_nothing(page_url: str,
+                                                                    tmp_path: Path) -> None:
     broken = tmp_path / "broken-library.json"
     broken.write_text(json.dumps(BROKEN))
     garbage = tmp_path / "garbage.json"
@@ -179,6 +187,10 @@ def test_a_broken_import_names_the_file_and_path_and_changes_nothing(page_url: s
     assert values[16] == before
 
 
+#: The presets section's status line.
+STATUS = "document.querySelector('.lanterna-presets-status').textContent"
+
+
 def authoring_routes() -> list[dict[str, object]]:
     put = r"/api/datasets/lens/presets$"
     return [
@@ -190,7 +202,7 @@ def authoring_routes() -> list[dict[str, object]]:
 
 
 def test_save_to_dataset_sends_the_token_and_handles_401(page_url: str, tmp_path: Path) -> None:
-    status = evaluate("() => [document.querySelector('.lanterna-presets-status').textContent, "
+    status = evaluate(f"() => [{STATUS}, "
                       "document.querySelector('.lanterna-token-row').hidden, "
                       "sessionStorage.getItem('lanterna.authoringToken')]")
     steps = [
@@ -199,19 +211,20 @@ def test_save_to_dataset_sends_the_token_and_handles_401(page_url: str, tmp_path
         {"click": "button[name=presets-save-dataset]"},
         {"fill": "input[name=authoring-token]", "value": "wrong"},
         {"click": "button[name=presets-send-token]"},
-        {"waitFor": "() => document.querySelector('.lanterna-presets-status').textContent.includes('401')"},
+        {"waitFor": f"() => {STATUS}.includes('401')"},
         status,
         {"fill": "input[name=authoring-token]", "value": "s3cret"},
         {"key": "Enter"},
-        {"waitFor": "() => document.querySelector('.lanterna-presets-status').textContent.startsWith('Saved')"},
+        {"waitFor": f"() => {STATUS}.startsWith('Saved')"},
         status,
         evaluate("() => { document.querySelector('.lanterna-presets-status').textContent = ''; }"),
         {"click": "button[name=presets-save-dataset]"},
-        {"waitFor": "() => document.querySelector('.lanterna-presets-status').textContent.startsWith('Saved')"},
+        {"waitFor": f"() => {STATUS}.startsWith('Saved')"},
         status,
         evaluate("() => window.lanterna.getPresetLibrary()"),
     ]
-    found = run_page(page_url, steps, tmp_path, VIEW, routes=authoring_routes(), record=r"/api/datasets/",
+    found = run_page(page_url, steps, tmp_path, VIEW, routes=authoring_routes(),
+                     record=r"/api/datasets/",
                      allow_console_errors=["401"])
     values, requests = found["values"], found["requests"]
     assert "wrong token" in values[12][0] and values[12][1] is False and values[12][2] is None
@@ -237,12 +250,14 @@ def test_no_save_to_dataset_without_authoring(page_url: str, tmp_path: Path) -> 
 
 BUTTON = evaluate("""() => {
   const b = document.getElementById('overlays');
-  return { hidden: b.hidden, disabled: b.disabled, pressed: b.getAttribute('aria-pressed'), title: b.title,
+  return { hidden: b.hidden, disabled: b.disabled, pressed: b.getAttribute('aria-pressed'),
+           title: b.title,
            hypertext: document.querySelector('.lanterna-hypertext')?.textContent ?? null };
 }""")
 
 
-def test_annotations_button_is_disabled_on_layers_without_overlays(page_url: str, tmp_path: Path) -> None:
+def test_annotations_button_is_disabled_on_layers_without_overlays(page_url: str,
+                                                                   tmp_path: Path) -> None:
     steps = [
         READY, FRAME, BUTTON,
         {"select": "select[name=layer]", "value": "second"},
@@ -251,7 +266,8 @@ def test_annotations_button_is_disabled_on_layers_without_overlays(page_url: str
     ]
     values = run_page(page_url, steps, tmp_path, VIEW)["values"]
     on_base, on_second = values[2], values[5]
-    assert on_base["hidden"] is False and on_base["disabled"] is False and on_base["pressed"] == "true"
+    assert on_base["hidden"] is False and on_base["disabled"] is False
+    assert on_base["pressed"] == "true"
     assert "level" not in on_base["hypertext"].lower(), on_base["hypertext"]
     assert on_second["disabled"] is True and on_second["pressed"] == "false"
     assert "Base" in on_second["title"]
@@ -269,7 +285,8 @@ STATE = evaluate("""() => ({
 def test_an_unknown_layer_or_mode_in_the_url_falls_back_with_a_notice(
         page_url: str, tmp_path: Path, query: str, word: str) -> None:
     steps = [
-        {"waitFor": "() => document.querySelector('.lanterna-presets') && window.lanterna.getNotices().length > 0"},
+        {"waitFor": "() => document.querySelector('.lanterna-presets') "
+                    "&& window.lanterna.getNotices().length > 0"},
         STATE, {"click": ".lanterna-notice-action"}, STATE,
     ]
     values = run_page(page_url + query, steps, tmp_path, VIEW)["values"]
@@ -285,7 +302,8 @@ def test_an_unknown_layer_or_mode_in_the_url_falls_back_with_a_notice(
 PROGRESS = evaluate("() => document.getElementById('progress').hidden")
 
 
-def test_the_loading_bar_shows_while_tiles_load_and_failures_show_a_notice(page_url: str, tmp_path: Path) -> None:
+def test_the_loading_bar_shows_while_tiles_load_and_failures_show_a_notice(
+        page_url: str, tmp_path: Path) -> None:
     routes = [{"match": r"/iiif/second[^/]*/", "hang": True}]
     steps = [
         READY, FRAME, PROGRESS,
@@ -294,7 +312,8 @@ def test_the_loading_bar_shows_while_tiles_load_and_failures_show_a_notice(page_
         evaluate("() => new Promise((r) => requestAnimationFrame(() => requestAnimationFrame(r)))"),
         PROGRESS,
         # The hung tiles time out: the viewer's notice says so and the bar goes.
-        evaluate("() => { window.lanterna.viewer.imageLoader.timeout = 500; window.lanterna.viewer.forceRedraw(); }"),
+        evaluate("() => { window.lanterna.viewer.imageLoader.timeout = 500; "
+                 "window.lanterna.viewer.forceRedraw(); }"),
         {"select": "select[name=layer]", "value": "base"},
         {"select": "select[name=layer]", "value": "second"},
         {"waitFor": "() => window.lanterna.getNotices().some((n) => n.kind === 'tiles-failed')"},
@@ -311,8 +330,9 @@ def test_the_loading_bar_shows_while_tiles_load_and_failures_show_a_notice(page_
 @pytest.fixture(scope="module")
 def single_layer(tmp_path_factory: pytest.TempPathFactory) -> Iterator[str]:
     root = tmp_path_factory.mktemp("single")
-    with DatasetWriter(root / "one", name="one", label="One layer, a long title that has to be cut short "
-                       "on a phone because it is far too long", width=300, height=200, tile_size=256) as ds:
+    label = "One layer, a long title that has to be cut short on a phone because it is far too long"
+    with DatasetWriter(root / "one", name="one", label=label, width=300, height=200,
+                       tile_size=256) as ds:
         add_ptm_layer(ds, random_ptm_of_size(300, 200, seed=3), layer_id="ptm", label="Tablet")
     manifest = root / "one" / "manifest.json"
     doc = json.loads(manifest.read_text())
@@ -328,13 +348,15 @@ def single_layer(tmp_path_factory: pytest.TempPathFactory) -> Iterator[str]:
         server.close()
 
 
-def test_a_single_layer_dataset_hides_the_layer_and_annotation_rows(single_layer: str, tmp_path: Path) -> None:
+def test_a_single_layer_dataset_hides_the_layer_and_annotation_rows(single_layer: str,
+                                                                    tmp_path: Path) -> None:
     shown = evaluate("""() => {
       const visible = (el) => el !== null && el.getClientRects().length > 0;
       const row = (name) => document.querySelector(`select[name="${name}"]`).closest('label');
       return {
         layer: visible(row('layer')), lensLayer: visible(row('lens-layer')),
-        lensAnnotations: visible(row('lens-annotations')), overlays: visible(document.getElementById('overlays')),
+        lensAnnotations: visible(row('lens-annotations')),
+        overlays: visible(document.getElementById('overlays')),
         mode: visible(row('mode')),
         about: document.querySelector('.lanterna-about').textContent, bad: window.bad ?? null,
         bold: document.querySelector('.lanterna-about-summary b')?.textContent ?? null,
@@ -353,10 +375,12 @@ def test_every_control_is_reached_by_tab_with_a_focus_ring(page_url: str, tmp_pa
     tab = evaluate("""() => {
       const el = document.activeElement;
       const style = getComputedStyle(el);
-      return [el.id || el.getAttribute('name') || el.className || el.outerHTML.slice(0, 12), style.outlineStyle !== 'none'
+      return [el.id || el.getAttribute('name') || el.className || el.outerHTML.slice(0, 12),
+        style.outlineStyle !== 'none'
         && parseFloat(style.outlineWidth) >= 2];
     }""")
-    steps: list[dict[str, Any]] = [READY, {"click": "#lens"}, evaluate("() => document.body.focus()")]
+    steps: list[dict[str, Any]] = [READY, {"click": "#lens"},
+                                   evaluate("() => document.body.focus()")]
     for _ in range(60):
         steps += [{"key": "Tab"}, tab]
     values = run_page(page_url, steps, tmp_path, VIEW)["values"][4::2]
@@ -366,4 +390,5 @@ def test_every_control_is_reached_by_tab_with_a_focus_ring(page_url: str, tmp_pa
                  "preset-name", "preset-save", "presets-export", "presets-import"):
         assert name in reached, (name, reached)
     # (after the last control the focus leaves the page: the body)
-    assert all(ring for name, ring in values if not name.startswith("<body")), [v for v in values if not v[1]]
+    unringed = [name for name, ring in values if not ring and not name.startswith("<body")]
+    assert unringed == []

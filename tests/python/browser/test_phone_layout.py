@@ -8,7 +8,6 @@ the object into the part of the view the toolbar and the panel leave free (read 
 from __future__ import annotations
 
 from collections.abc import Iterator
-from pathlib import Path
 from typing import Any
 
 import numpy as np
@@ -23,8 +22,12 @@ pytestmark = pytest.mark.browser
 PHONE = (390, 844)
 
 LAYOUT = evaluate("""() => {
-  const rect = (el) => { const r = el.getBoundingClientRect(); return [r.left, r.top, r.right, r.bottom]; };
-  const buttons = [...document.querySelectorAll('#toolbar button')].filter((b) => !b.hidden).map((b) => {
+  const rect = (el) => {
+    const r = el.getBoundingClientRect();
+    return [r.left, r.top, r.right, r.bottom];
+  };
+  const shown = [...document.querySelectorAll('#toolbar button')].filter((b) => !b.hidden);
+  const buttons = shown.map((b) => {
     const [l, t, r, bo] = rect(b);
     const hit = document.elementFromPoint((l + r) / 2, (t + bo) / 2);
     return { id: b.id, hit: hit === b || b.contains(hit), width: r - l, height: bo - t };
@@ -33,7 +36,8 @@ LAYOUT = evaluate("""() => {
   const panel = document.getElementById('panel');
   return {
     buttons, scrollWidth: document.scrollingElement.scrollWidth,
-    label: { height: label.getBoundingClientRect().height, cut: label.scrollWidth > label.clientWidth },
+    label: { height: label.getBoundingClientRect().height,
+             cut: label.scrollWidth > label.clientWidth },
     toolbar: rect(document.getElementById('toolbar')),
     panel: panel.hidden ? null : rect(panel),
     expanded: document.getElementById('panel-toggle').getAttribute('aria-expanded'),
@@ -77,7 +81,8 @@ def test_every_toolbar_button_is_tappable_and_nothing_scrolls_sideways(phone: li
     for layout in (phone[2], phone[9]):
         assert layout["scrollWidth"] <= PHONE[0]
         ids = [b["id"] for b in layout["buttons"]]
-        assert {"panel-toggle", "mode", "home", "zoom-in", "zoom-out", "lens", "overlays"} <= set(ids), ids
+        expected = {"panel-toggle", "mode", "home", "zoom-in", "zoom-out", "lens", "overlays"}
+        assert expected <= set(ids), ids
         for b in layout["buttons"]:
             assert b["hit"], f"{b['id']} is covered"
             assert b["height"] >= 44 and b["width"] >= 32, b
@@ -93,7 +98,8 @@ def test_the_panel_starts_collapsed_and_opens_as_a_bottom_sheet(phone: list[Any]
     assert phone[2]["panel"] is None and phone[2]["expanded"] == "false"
     left, top, right, bottom = phone[9]["panel"]
     assert phone[9]["expanded"] == "true"
-    assert (left, right, bottom) == (0, PHONE[0], PHONE[1]) and PHONE[1] * 0.3 < top < PHONE[1] * 0.8
+    assert (left, right, bottom) == (0, PHONE[0], PHONE[1])
+    assert PHONE[1] * 0.3 < top < PHONE[1] * 0.8
 
 
 def test_home_fits_the_object_into_the_free_area(phone: list[Any]) -> None:
@@ -101,7 +107,8 @@ def test_home_fits_the_object_into_the_free_area(phone: list[Any]) -> None:
     left, top, right, bottom = object_box(phone[4])
     assert top >= toolbar_bottom - 1 and bottom <= PHONE[1]
     assert right - left >= PHONE[0] - 2, "the object fills the free width"
-    assert abs((top + bottom) / 2 - (toolbar_bottom + PHONE[1]) / 2) <= 2, "centred in the free area"
+    centre = (toolbar_bottom + PHONE[1]) / 2
+    assert abs((top + bottom) / 2 - centre) <= 2, "centred in the free area"
     sheet_top = phone[9]["panel"][1]
     left, top, right, bottom = object_box(phone[8])
     assert top >= toolbar_bottom - 1 and bottom <= sheet_top + 1, (top, bottom, sheet_top)
