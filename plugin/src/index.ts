@@ -40,6 +40,10 @@ export {
 } from './render/params';
 export { createControls, type Controls } from './panel/controls';
 export { createLensControls, type LensControls } from './panel/lens-controls';
+export { createLightTools } from './panel/light-tools';
+export { createPresetsPanel, type PresetsPanelOptions } from './panel/presets-panel';
+export { createAbout } from './panel/about';
+export type { PanelSection } from './panel/panel-dom';
 export { createHypertext, NO_ANNOTATION_TEXT, type HypertextWidget } from './panel/hypertext';
 export { sanitizeHtml } from './ui/sanitize-html';
 export type { DragMode } from './ui/interaction';

@@ -1,15 +1,19 @@
 /**
- * The viewer page: `index.html?manifest=URL[&layer=ID][&mode=MODE][&wholeLevelMaxSide=PX][&measure=1]`. Exposes
- * the viewer as `window.lanterna` and its measurement widget as `window.lanternaMeasure` (`&measure=1`: on at
- * start). Test-only: `&minPixelRatio=R` sets OpenSeadragon's `minPixelRatio` (the page
- * shows full detail otherwise; the browser tests pass 0.75 to get exact levels, tests/browser/render.mjs). A dataset that cannot be opened gives a message in the page (`#error`); errors
- * after that (switching layers, the lens) show as notices over the viewer.
+ * The advanced viewer page (`docs/viewer.md`):
+ * `index.html?manifest=URL[&layer=ID][&mode=MODE][&wholeLevelMaxSide=PX][&measure=1]`. Exposes the viewer as
+ * `window.lanterna` and its measurement widget as `window.lanternaMeasure` (`&measure=1`: on at start). Test-only: `&minPixelRatio=R` sets OpenSeadragon's `minPixelRatio` (the page
+ * shows full detail otherwise; the browser tests pass 0.75 to get exact levels, tests/browser/render.mjs).
+ * A dataset that cannot be opened gives a message in the page (`#error`); errors after that
+ * (switching layers, the lens, an unknown layer or mode in the URL) show as dismissible notices.
  */
 import {
-  createControls, createLensControls, createMeasurement, createViewer, type LanternaViewer, type MeasurementWidget,
-  type RenderMode,
+  createAbout, createControls, createLensControls, createLightTools, createPresetsPanel, createViewer,
+  LanternaError, MODE_LABELS, createMeasurement, type MeasurementWidget, UnknownLayerError, isRenderMode, type LanternaViewer,
 } from '../index';
 import { describeOpenError, showErrorBox } from './error-page';
+import { createLayout } from './layout';
+import { trackLoading } from './loading';
+import { hideToolbarButtons, wireMeasureButton, wireToolbar } from './toolbar';
 
 declare global {
   interface Window {
@@ -21,6 +25,7 @@ declare global {
 
 const errorBox = document.getElementById('error');
 const label = document.getElementById('label');
+const progress = document.getElementById('progress');
 
 /** Show the page's error box, and hide the controls that have nothing to act on. */
 function showFatal(error: unknown, manifestUrl: string | null): void {
@@ -28,33 +33,66 @@ function showFatal(error: unknown, manifestUrl: string | null): void {
   if (errorBox) {
     showErrorBox(errorBox, describeOpenError(error), manifestUrl);
   }
-  for (const id of ['mode', 'home', 'lens', 'overlays']) {
-    const button = document.getElementById(id);
-    if (button) {
-      button.hidden = true;
-    }
-  }
+  hideToolbarButtons();
   if (label) {
     label.hidden = true;
   }
+  if (progress) {
+    progress.hidden = true;
+  }
 }
 
-/** Open the viewer on `manifest` and wire the page's controls to it. */
-function open(manifest: string, layer: string | undefined, mode: string | null, wholeLevelMaxSide: number | undefined,
-  minPixelRatio: number | null, measure: boolean): void {
+/** What the page was asked for in its URL. */
+interface PageOptions {
+  readonly manifest: string;
+  readonly layer: string | undefined;
+  readonly mode: string | null;
+  readonly wholeLevelMaxSide: number | undefined;
+  readonly minPixelRatio: number | null;
+  /** Measurement mode on at start. */
+  readonly measure: boolean;
+}
+
+/** Set the URL's mode, or say why not and keep the default. */
+function applyUrlMode(lanterna: LanternaViewer, mode: string): void {
+  const layer = lanterna.getLayers().find((l) => l.id === lanterna.getActiveLayer());
+  if (isRenderMode(mode) && layer?.modes.includes(mode)) {
+    lanterna.setRenderMode(mode);
+    return;
+  }
+  lanterna.reportError(new LanternaError(`The URL asks for the mode "${mode}", which ${isRenderMode(mode)
+    ? `does not apply to the layer "${layer?.label ?? ''}"` : 'does not exist'}: showing ${
+    MODE_LABELS[lanterna.getRenderMode()]} instead.`));
+}
+
+/** Build the panel's sections and the About box. */
+function buildPanel(lanterna: LanternaViewer, panel: HTMLElement, manifest: string): void {
+  const report = (error: unknown): void => { lanterna.reportError(error); };
+  createControls(lanterna, panel, report);
+  createLightTools(lanterna, panel);
+  createLensControls(lanterna, panel, report);
+  createPresetsPanel(lanterna, panel, { manifestUrl: manifest, onError: report });
+  if (lanterna.manifest) {
+    createAbout(lanterna.manifest, panel);
+  }
+}
+
+/** Open the viewer and wire the page's controls to it; `fallback` is the notice to show once ready. */
+function open(page: PageOptions, fallback: string | null = null): void {
   let lanterna: LanternaViewer;
   try {
     lanterna = createViewer({
-      element: 'viewer', manifest, layer, wholeLevelMaxSide,
-      ...(minPixelRatio === null ? {} : { osd: { minPixelRatio } }),
+      element: 'viewer', manifest: page.manifest, layer: page.layer, wholeLevelMaxSide: page.wholeLevelMaxSide,
+      ...(page.minPixelRatio === null ? {} : { osd: { minPixelRatio: page.minPixelRatio } }),
     });
   } catch (error) {
-    showFatal(error, manifest); // e.g. no WebGL2
+    showFatal(error, page.manifest); // e.g. no WebGL2
     return;
   }
   window.lanterna = lanterna;
   const measurement = createMeasurement(lanterna);
   window.lanternaMeasure = measurement;
+  const stopLoading = progress ? trackLoading(lanterna, progress) : () => undefined;
   /** Run an action of a control; its errors become notices over the viewer. */
   const attempt = (action: () => unknown): void => {
     try {
@@ -66,56 +104,42 @@ function open(manifest: string, layer: string | undefined, mode: string | null, 
       lanterna.reportError(error);
     }
   };
-  const report = (error: unknown): void => { lanterna.reportError(error); };
   if (label) {
     label.textContent = 'Loading…';
   }
-  const modeButton = document.getElementById('mode');
-  const homeButton = document.getElementById('home');
   const panel = document.getElementById('panel');
-  modeButton?.addEventListener('click', () => {
-    const next = lanterna.getMode() === 'light' ? 'pan' : 'light';
-    lanterna.setMode(next);
-    modeButton.textContent = next === 'light' ? 'Drag: light' : 'Drag: pan';
-    modeButton.setAttribute('aria-pressed', String(next === 'light'));
-  });
-  homeButton?.addEventListener('click', () => { lanterna.viewer.viewport.goHome(); });
-  const lensButton = document.getElementById('lens');
-  const overlaysButton = document.getElementById('overlays');
-  const syncButtons = (): void => {
-    lensButton?.setAttribute('aria-pressed', String(lanterna.getLens().enabled));
-    overlaysButton?.setAttribute('aria-pressed', String(lanterna.getOverlaysVisible()));
-  };
-  lensButton?.addEventListener('click', () => {
-    attempt(() => lanterna.setLens({ enabled: !lanterna.getLens().enabled }));
-  });
-  overlaysButton?.addEventListener('click', () => {
-    lanterna.setOverlaysVisible(!lanterna.getOverlaysVisible());
-  });
-  lanterna.onChange(syncButtons);
+  const toolbar = document.getElementById('toolbar');
+  const toggle = document.getElementById('panel-toggle') as HTMLButtonElement | null;
   lanterna.ready.then(() => {
     const text = lanterna.manifest?.label ?? '';
     if (label) {
       label.textContent = text;
+      label.title = text;
       label.hidden = text === '';
     }
     document.title = text ? `${text} · Lanterna` : 'Lanterna viewer';
-    if (mode !== null) {
-      attempt(() => { lanterna.setRenderMode(mode as RenderMode); }); // RenderModeError for an unknown mode
+    if (fallback) {
+      lanterna.reportError(new LanternaError(fallback));
     }
-    measurement.setEnabled(measure);
-    if (panel) {
-      createControls(lanterna, panel, report);
-      createLensControls(lanterna, panel, report);
-      panel.hidden = false;
+    if (page.mode !== null) {
+      attempt(() => { applyUrlMode(lanterna, page.mode ?? ''); });
     }
-    if (overlaysButton) {
-      overlaysButton.hidden = !lanterna.manifest?.layers.some((l) => l.overlays.length > 0);
+    measurement.setEnabled(page.measure);
+    if (panel && toolbar && toggle) {
+      buildPanel(lanterna, panel, page.manifest);
+      wireToolbar(lanterna, createLayout(lanterna, panel, toolbar, toggle), attempt);
+      wireMeasureButton(lanterna, measurement);
     }
-    syncButtons();
   }, (error: unknown) => {
     lanterna.destroy();
-    showFatal(error, manifest);
+    stopLoading();
+    if (error instanceof UnknownLayerError && page.layer !== undefined && fallback === null) {
+      delete window.lanterna;
+      open({ ...page, layer: undefined },
+        `The URL asks for the layer "${page.layer}", which this dataset does not have: showing its first layer.`);
+      return;
+    }
+    showFatal(error, page.manifest);
   });
 }
 
@@ -133,7 +157,11 @@ if (!manifestParam) {
   if (manifest !== null) {
     const side = Number(params.get('wholeLevelMaxSide') ?? Number.NaN);
     const ratio = Number(params.get('minPixelRatio') ?? Number.NaN);
-    open(manifest, params.get('layer') ?? undefined, params.get('mode'), Number.isFinite(side) ? side : undefined,
-      Number.isFinite(ratio) && ratio > 0 ? ratio : null, params.get('measure') === '1');
+    open({
+      manifest, layer: params.get('layer') ?? undefined, mode: params.get('mode'),
+      wholeLevelMaxSide: Number.isFinite(side) ? side : undefined,
+      minPixelRatio: Number.isFinite(ratio) && ratio > 0 ? ratio : null,
+      measure: params.get('measure') === '1',
+    });
   }
 }

@@ -1,14 +1,12 @@
 /**
  * The viewer page's control panel: layer switcher, mode menu (the active layer's modes only) and
- * sliders for the parameters the mode uses. Plain DOM, driven by the viewer's public API.
+ * sliders for every parameter the mode uses (light intensity included). Plain DOM, driven by the viewer's public API.
  */
 import type { LanternaViewer } from '../api/viewer-api';
 import { LanternaError } from '../errors';
 import type { RenderMode } from '../render/modes';
-import { PARAM_SPECS, relevantParams, type RenderParamName } from '../render/params';
-import {
-  labelled, layerOptions, modeOptions, mountSection, namedSelect, slider, type PanelSection, type Slider,
-} from './panel-dom';
+import { labelled, layerOptions, modeOptions, mountSection, namedSelect, type PanelSection } from './panel-dom';
+import { createParamSliders } from './param-sliders';
 
 /** The panel's DOM. */
 export type Controls = PanelSection;
@@ -27,33 +25,19 @@ export function createControls(lanterna: LanternaViewer, parent: HTMLElement,
   const layers = lanterna.getLayers();
   const layerSelect = namedSelect('layer', layerOptions(layers));
   const modeSelect = namedSelect('mode');
-  const sliders = document.createElement('div');
-  sliders.className = 'lanterna-sliders';
+  const sliders = createParamSliders('', (params) => { lanterna.setRenderParams(params); });
   const reset = document.createElement('button');
   reset.type = 'button';
   reset.textContent = 'Reset';
   reset.title = 'Reset the parameters to their defaults';
   const layerRow = labelled('Layer', layerSelect);
   layerRow.hidden = layers.length < 2;
-  panel.append(layerRow, labelled('Mode', modeSelect), sliders, reset);
+  const title = document.createElement('h2');
+  title.className = 'lanterna-section-title';
+  title.textContent = 'Base layer';
+  panel.append(title, layerRow, labelled('Mode', modeSelect), sliders.element, reset);
 
-  const inputs = new Map<RenderParamName, Slider>();
-  let shownKey = '';
-
-  const buildSliders = (names: RenderParamName[]): void => {
-    sliders.replaceChildren();
-    inputs.clear();
-    for (const name of names) {
-      const spec = PARAM_SPECS[name];
-      const s = slider(spec.label, { name, min: spec.min, max: spec.max, step: spec.step });
-      s.input.addEventListener('input', () => { lanterna.setRenderParams({ [name]: Number(s.input.value) }); });
-      s.input.addEventListener('dblclick', () => { lanterna.setRenderParams({ [name]: spec.default }); });
-      s.row.title = `${name}: ${spec.min}–${spec.max}, default ${spec.default} (double-click to reset)`;
-      sliders.appendChild(s.row);
-      inputs.set(name, s);
-    }
-  };
-
+  let shownLayer = '';
   const refresh = (): void => {
     const activeId = lanterna.getActiveLayer();
     const active = layers.find((l) => l.id === activeId);
@@ -62,18 +46,12 @@ export function createControls(lanterna: LanternaViewer, parent: HTMLElement,
     }
     layerSelect.value = activeId;
     const mode = lanterna.getRenderMode();
-    const key = `${activeId}|${mode}`;
-    if (key !== shownKey) {
-      shownKey = key;
+    if (shownLayer !== activeId) {
+      shownLayer = activeId;
       modeSelect.replaceChildren(...modeOptions(active.modes));
-      buildSliders(relevantParams(mode, active.shading));
     }
     modeSelect.value = mode;
-    const params = lanterna.getRenderParams();
-    for (const [name, { input, value }] of inputs) {
-      input.value = String(params[name]);
-      value.textContent = params[name].toFixed(PARAM_SPECS[name].step < 1 ? 2 : 0);
-    }
+    sliders.refresh({ key: activeId, mode, shading: active.shading, params: lanterna.getRenderParams() });
   };
 
   layerSelect.addEventListener('change', () => {

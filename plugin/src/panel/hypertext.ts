@@ -34,9 +34,6 @@ export function createHypertext(parent: HTMLElement): HypertextWidget {
   Object.assign(head.style, { display: 'flex', gap: '8px', alignItems: 'baseline', justifyContent: 'space-between' });
   const short = document.createElement('div');
   short.className = 'lanterna-hypertext-short';
-  const level = document.createElement('small');
-  level.className = 'lanterna-hypertext-level';
-  Object.assign(level.style, { color: '#999', whiteSpace: 'nowrap' });
   const more = document.createElement('button');
   more.type = 'button';
   more.className = 'lanterna-hypertext-more';
@@ -50,7 +47,7 @@ export function createHypertext(parent: HTMLElement): HypertextWidget {
   long.className = 'lanterna-hypertext-long';
   long.hidden = true;
   Object.assign(long.style, { marginTop: '6px', borderTop: '1px solid #3a3a3a', paddingTop: '6px' });
-  head.append(short, level, more);
+  head.append(short, more);
   box.append(head, long);
   box.hidden = true;
   parent.appendChild(box);
@@ -73,7 +70,6 @@ export function createHypertext(parent: HTMLElement): HypertextWidget {
     element: box,
     update(state, hasOverlay, visible) {
       box.hidden = !hasOverlay || !visible;
-      level.textContent = `level ${state.level}`;
       if (!state.available) {
         short.textContent = NO_ANNOTATION_TEXT;
         short.style.color = '#999';
@@ -83,7 +79,7 @@ export function createHypertext(parent: HTMLElement): HypertextWidget {
         setExpanded(expanded);
         return;
       }
-      short.textContent = state.short || `Level ${state.level}`;
+      short.textContent = state.short || 'Annotation';
       short.style.color = '';
       more.hidden = state.long === '';
       if (state.long !== shownLong) {

@@ -4,6 +4,7 @@
  */
 import type { LanternaViewer, LayerInfo } from '../api/viewer-api';
 import { MODE_LABELS, type RenderMode } from '../render/modes';
+import { layerLabels } from './layer-labels';
 
 /** A section of the panel: its element and how to remove it. */
 export interface PanelSection {
@@ -28,9 +29,13 @@ export function namedSelect(name: string, options: readonly HTMLOptionElement[] 
   return select;
 }
 
-/** One option per layer: "label (layer type)", valued by the layer id. */
+/** One option per layer, valued by the layer id: its label (see `layer-labels.ts`), the type in the tooltip. */
 export function layerOptions(layers: readonly LayerInfo[]): HTMLOptionElement[] {
-  return layers.map((l) => new Option(`${l.label} (${l.layerType})`, l.id));
+  return layerLabels(layers).map(({ id, text, title }) => {
+    const option = new Option(text, id);
+    option.title = title;
+    return option;
+  });
 }
 
 /** One option per mode, labelled for menus. */
