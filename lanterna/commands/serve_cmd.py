@@ -222,6 +222,9 @@ def _print_urls(args: argparse.Namespace, address: tuple[str, int], root: Path,
     for folder in datasets:
         manifest = f"{url}datasets/{folder.name}/manifest.json"
         print(f"  {folder.name}: {url}viewer/?manifest={manifest}")
+        if (folder / "presets.json").is_file():  # the simplified viewer shows a dataset's presets
+            simple = f"{url}viewer/simple.html?manifest={manifest}"
+            print(f"  {folder.name} (simplified viewer): {simple}")
     if not datasets:
         print(f"  no datasets yet: lanterna import FILE -o {root / 'NAME'}")
     if workers is None:

@@ -131,6 +131,17 @@ def test_the_built_in_server_says_what_it_is_without_the_werkzeug_banner(root: P
         assert banner not in output
 
 
+def test_a_dataset_with_presets_also_gets_its_simplified_viewer_url(tmp_path: Path) -> None:
+    with DatasetWriter(tmp_path / "obj", name="obj", label="Object", width=64, height=48) as ds:
+        add_ptm_layer(ds, random_ptm_of_size(64, 48))
+    (tmp_path / "obj").resolve().joinpath("presets.json").write_text(
+        '{"type": "LanternaPresets", "version": 1, "presets": {}, "base": [], "lens": []}')
+    lines = _session(tmp_path)[1].splitlines()
+    assert lines[1].startswith("  obj: http://127.0.0.1:") and "/viewer/?manifest=" in lines[1]
+    assert lines[2].startswith("  obj (simplified viewer): http://127.0.0.1:")
+    assert lines[2].endswith("/viewer/simple.html?manifest=" + lines[1].split("manifest=")[1])
+
+
 def test_hidden_copies_of_a_dataset_are_not_listed(tmp_path: Path) -> None:
     root = tmp_path / "root"
     with DatasetWriter(root / "obj", name="obj", label="Object", width=30, height=20) as ds:
