@@ -5,6 +5,7 @@
  * after that (switching layers, the lens) show as notices over the viewer.
  */
 import { createControls, createLensControls, createViewer, type LanternaViewer, type RenderMode } from '../index';
+import { mountViewTools } from '../index';
 import { describeOpenError, showErrorBox } from './error-page';
 
 declare global {
@@ -104,6 +105,8 @@ function open(manifest: string, layer: string | undefined, mode: string | null, 
       overlaysButton.hidden = !lanterna.manifest?.layers.some((l) => l.overlays.length > 0);
     }
     syncButtons();
+    // View tools (issue #13): the URL hash, Snapshot and ? buttons, scale bar, help overlay, canvas keys.
+    mountViewTools(lanterna, { toolbar: document.getElementById('toolbar'), home: () => { homeButton?.click(); } });
   }, (error: unknown) => {
     lanterna.destroy();
     showFatal(error, manifest);
