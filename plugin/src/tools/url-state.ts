@@ -3,7 +3,8 @@
  * "The link format"). On `ready` the hash's state is restored; as the state changes the hash is
  * rewritten (debounced, `history.replaceState`: no history entry per change); a `hashchange` (a
  * link pasted into the address bar) restores again. Before a hash is written the viewer is set to
- * the rounded state it encodes, so what the page shows is exactly what the link shows.
+ * the rounded state it encodes, so what the page shows is exactly what the link shows. The viewer
+ * element's `data-lanterna-link` holds the hash last written (the page shows exactly that state).
  */
 import type { LanternaViewer } from '../api/viewer-api';
 import { LanternaError } from '../errors';
@@ -39,6 +40,7 @@ export function attachUrlState(lanterna: LanternaViewer, options: UrlStateOption
     if (hash !== window.location.hash) {
       window.history.replaceState(window.history.state, '', hash);
     }
+    lanterna.viewer.element.dataset.lanternaLink = hash;
   };
   /** Run `step` unless another one runs; its errors become notices. */
   const exclusive = async (step: () => Promise<void>): Promise<void> => {
