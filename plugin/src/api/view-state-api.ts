@@ -7,8 +7,9 @@ import type { ViewState, ViewStateUpdate } from '../state/view-state';
 /** Options of {@link ViewStateApi.snapshot}. */
 export interface SnapshotOptions {
   /**
-   * Not supported yet (a snapshot is always at device resolution; giving it rejects). Planned: the
-   * current image region at this many output pixels per image pixel.
+   * Draw the image region in view (clipped to the image) at this many output pixels per image pixel
+   * (1: full resolution), tile by tile, instead of the canvas at device resolution. The viewer moves
+   * while it draws and is put back after. @default the canvas's device pixels
    */
   scale?: number;
 }

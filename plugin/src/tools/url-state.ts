@@ -57,6 +57,10 @@ export function attachUrlState(lanterna: LanternaViewer, options: UrlStateOption
     }
   };
   const write = (): Promise<void> => exclusive(async () => {
+    if (lanterna.viewer.element.dataset.lanternaSnapshot !== undefined) {
+      schedule(); // a scaled snapshot is moving the view: it puts it back after
+      return;
+    }
     const now = lanterna.getState();
     if (shown === null || !sameState(now, shown)) {
       await settle(now);

@@ -4,11 +4,11 @@
  */
 import type { LanternaViewer } from '../api/viewer-api';
 import type { SnapshotOptions } from '../api/view-state-api';
-import { LanternaError } from '../errors';
 import { encodeHash } from '../state/hash-codec';
 import { encodePng } from '../state/png';
 import { roundLight, roundParams } from '../state/view-state';
 import { PARAM_NAMES } from '../render/params';
+import { scaledPixels } from './scaled-pixels';
 import { readViewState } from './view-state';
 
 /** zlib-compress with the browser's CompressionStream (`deflate` is the zlib format PNG uses). */
@@ -36,13 +36,13 @@ export function snapshotTexts(api: LanternaViewer): Record<string, string> {
 
 /** The PNG of the current view (see `LanternaViewer.snapshot`). */
 export async function snapshotPng(api: LanternaViewer, options: SnapshotOptions = {}): Promise<Blob> {
-  if (options.scale !== undefined) {
-    throw new LanternaError('snapshot: the scale option is not supported yet (device resolution only)');
-  }
   await api.ready;
   await api.whenFullyLoaded();
   const texts = snapshotTexts(api);
-  const { width, height, data } = api.readPixels();
+  const { width, height, data } = options.scale === undefined ? api.readPixels() : await scaledPixels(api, options.scale);
+  if (options.scale !== undefined) {
+    texts['Lanterna scale'] = `${options.scale} output px per image px`;
+  }
   const png = await encodePng(width, height, data, deflate, texts);
   return new Blob([new Uint8Array(png)], { type: 'image/png' });
 }

@@ -7,6 +7,7 @@ not with the plugin's reader.
 
 from __future__ import annotations
 
+import base64
 import struct
 import zlib
 from collections.abc import Iterator
@@ -97,3 +98,54 @@ def test_snapshot_png_equals_read_pixels(page_url: str, tmp_path: Path) -> None:
         assert [float(v) for v in texts["Lanterna view"].split(",")] == pytest.approx(
             [200 - (width - 500) / 2, 150, width, 375], abs=0.01)
         assert texts["Lanterna link"] == saved["hash"]
+
+
+#: A snapshot at `scale`, as base64 PNG bytes, and the state before and after it.
+SCALED = """
+const l = window.lanterna;
+const before = l.getState();
+const blob = await l.snapshot({ scale: %s });
+const bytes = new Uint8Array(await blob.arrayBuffer());
+let binary = '';
+for (let i = 0; i < bytes.length; i += 0x8000) {
+  binary += String.fromCharCode.apply(null, bytes.subarray(i, i + 0x8000));
+}
+return { png: btoa(binary), before, after: l.getState(), hash: location.hash };
+"""
+
+
+def test_a_scaled_snapshot_is_the_region_at_that_scale(page_url: str, tmp_path: Path) -> None:
+    """At scale 2 the 400×300 region is drawn in four tiles on a 640×480 viewer; it must equal one
+    800×600 viewer showing the same region at 2 device px per image px (opened on the same link)."""
+    out = tmp_path / "scaled"
+    setup = """
+      const l = window.lanterna;
+      l.setRenderMode('specular'); l.setLight(-0.2, 0.5);
+      l.showImageRegion(100, 80, 400, 300);
+      await l.setLens({ enabled: true, center: [330, 200], radius: 80, layer: 'second' });
+    """
+    saved = run_session([
+        {"url": page_url, "steps": [
+            {"eval": setup},
+            {"waitFor": SETTLED + " && location.hash.includes('lens=')"},
+            {"eval": "return location.hash;", "save": "hash"},
+            {"eval": SCALED % 2, "save": "snap"},
+        ]},
+        {"url": page_url + "{hash}", "viewport": {"width": 800, "height": 600}, "steps": [
+            {"waitFor": SETTLED},
+            {"frame": "big"},
+        ]},
+    ], out)
+    snap = saved["snap"]
+    data = base64.b64decode(snap["png"])
+    image = pyvips.Image.new_from_buffer(data, "")
+    assert (image.width, image.height) == (800, 600)
+    pixels = np.asarray(image.numpy(), np.uint8)
+    big = frame(out, "big")
+    assert big[..., :3].std() > 5
+    diff = np.abs(pixels.astype(int) - big.astype(int)).max(axis=-1)
+    assert diff.max() <= 1, f"{(diff > 1).sum()} pixels differ by more than 1, up to {diff.max()}"
+    assert (diff == 0).mean() > 0.99
+    assert png_texts(data)["Lanterna scale"] == "2 output px per image px"
+    assert snap["after"] == snap["before"], "the view is put back"
+    assert snap["hash"] == saved["hash"], "the link is not rewritten while drawing"
