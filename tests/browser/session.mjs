@@ -17,6 +17,8 @@
 //   {"click": "CSS selector"}
 //   {"download": "name", "press" | "click": …}  do the press or click, save the download as OUT/name
 //       and its suggested file name as `name`
+// Page keys: "routes": [{"match": "regex", "status": 404}] answer matching requests with that status;
+// "allowConsoleErrors": ["regex", …] console errors that do not fail the run.
 // The results (every saved value) go to OUT/result.json. Exits non-zero on a page error, a console
 // error or a step taking longer than timeoutMs.
 import { writeFileSync } from 'node:fs';
@@ -91,8 +93,12 @@ async function main() {
       const page = await context.newPage();
       await page.setViewportSize({ width: p.viewport?.width ?? 640, height: p.viewport?.height ?? 480 });
       page.on('pageerror', (err) => errors.push(`page ${index}: page error: ${err.message}`));
+      const allowed = (p.allowConsoleErrors ?? []).map((re) => new RegExp(re));
+      for (const r of p.routes ?? []) {
+        await page.route((u) => new RegExp(r.match).test(u.href), (route) => route.fulfill({ status: r.status }));
+      }
       page.on('console', (msg) => {
-        if (msg.type() === 'error') {
+        if (msg.type() === 'error' && !allowed.some((re) => re.test(msg.text()))) {
           errors.push(`page ${index}: console error: ${msg.text()}`);
         }
       });

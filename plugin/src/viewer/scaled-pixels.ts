@@ -8,6 +8,7 @@ import OpenSeadragon from 'openseadragon';
 import type { LanternaViewer } from '../api/viewer-api';
 import type { PixelData } from '../drawer/read-pixels';
 import { LanternaError } from '../errors';
+import { loadedOrFailed } from './loaded-or-failed';
 import { applyViewState, readViewState } from './view-state';
 
 /** Device pixels of each tile's border that are drawn but not kept. */
@@ -61,7 +62,7 @@ export async function scaledPixels(api: LanternaViewer, scale: number): Promise<
           await applyViewState(api, { lens: { center: state.lens.center, radius: state.lens.radius } });
         }
         api.viewer.forceRedraw();
-        await api.whenFullyLoaded();
+        await loadedOrFailed(api);
         const tile = api.readPixels();
         const cols = Math.min(stepX, outW - tx);
         for (let r = 0; r < Math.min(stepY, outH - ty); r++) {

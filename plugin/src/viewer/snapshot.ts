@@ -8,6 +8,7 @@ import { encodeHash } from '../state/hash-codec';
 import { encodePng } from '../state/png';
 import { roundLight, roundParams } from '../state/view-state';
 import { PARAM_NAMES } from '../render/params';
+import { loadedOrFailed } from './loaded-or-failed';
 import { scaledPixels } from './scaled-pixels';
 import { readViewState } from './view-state';
 
@@ -37,7 +38,7 @@ export function snapshotTexts(api: LanternaViewer): Record<string, string> {
 /** The PNG of the current view (see `LanternaViewer.snapshot`). */
 export async function snapshotPng(api: LanternaViewer, options: SnapshotOptions = {}): Promise<Blob> {
   await api.ready;
-  await api.whenFullyLoaded();
+  await loadedOrFailed(api);
   const texts = snapshotTexts(api);
   const { width, height, data } = options.scale === undefined ? api.readPixels() : await scaledPixels(api, options.scale);
   if (options.scale !== undefined) {

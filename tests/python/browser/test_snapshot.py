@@ -149,3 +149,27 @@ def test_a_scaled_snapshot_is_the_region_at_that_scale(page_url: str, tmp_path: 
     assert png_texts(data)["Lanterna scale"] == "2 output px per image px"
     assert snap["after"] == snap["before"], "the view is put back"
     assert snap["hash"] == saved["hash"], "the link is not rewritten while drawing"
+
+
+def test_a_snapshot_does_not_wait_for_tiles_that_failed(page_url: str, tmp_path: Path) -> None:
+    """Level 0 of the base layer cannot be loaded: the snapshot is taken once the tiles have
+    failed (the coarser level drawn there), and still equals the frame read back."""
+    out = tmp_path / "failed"
+    saved = run_session([{
+        "url": page_url, "routes": [{"match": r"/iiif/base_c0/full/max/", "status": 404}],
+        "allowConsoleErrors": [r"^Failed to load resource", r"^Tile %s failed to load"],
+        "steps": [
+            {"eval": "window.lanterna.showImageRegion(200, 150, 320, 240);"},
+            {"eval": SCALED % "undefined", "save": "snap"},
+            {"eval": "return window.lanterna.getNotices().map((n) => n.kind);", "save": "kinds"},
+            {"eval": "const { width, height, data } = window.lanterna.readPixels();"
+                     " return [width, height, Array.from(data.subarray(0, 4000))];",
+             "save": "read"},
+        ],
+    }], out)
+    assert "tiles-failed" in saved["kinds"]
+    image = pyvips.Image.new_from_buffer(base64.b64decode(saved["snap"]["png"]), "")
+    width, height, head = saved["read"]
+    assert (image.width, image.height) == (width, height)
+    pixels = np.asarray(image.numpy(), np.uint8).reshape(-1)[:4000]
+    assert pixels[:4000].tolist() == head and np.asarray(head).std() > 5
