@@ -197,3 +197,28 @@ def test_canvas_keys(page_url: str, tmp_path: Path) -> None:
     assert saved["buttonHelp"] == "Close"
     assert saved["buttonClosed"] == [True, "?"]
     assert json.dumps(saved)  # all values were JSON
+
+
+def test_a_rotated_view_is_reproduced_pixel_equal(page_url: str, tmp_path: Path) -> None:
+    out = tmp_path / "rotated"
+    setup = ("const l = window.lanterna; l.viewer.viewport.setRotation(90, true);"
+             " l.setLight(-0.41234, 0.2); l.showImageRegion(400.5, 300.25, 300, 225);"
+             " await l.setLens({ enabled: true, center: [150.5, 120.25], radius: 60 });")
+    saved = run_session([
+        {"url": page_url, "steps": [
+            {"eval": setup},
+            {"waitFor": SETTLED + " && location.hash.includes('rot=90')"},
+            {"frame": "shared"},
+            {"eval": "return location.hash;", "save": "hash"},
+        ]},
+        {"url": page_url + "{hash}", "steps": [
+            {"waitFor": SETTLED},
+            {"frame": "opened"},
+            {"eval": "return window.lanterna.viewer.viewport.getRotation(true);",
+             "save": "rotation"},
+        ]},
+    ], out)
+    assert saved["rotation"] == 90
+    shared, opened = frame(out, "shared"), frame(out, "opened")
+    assert shared[..., :3].std() > 5
+    assert np.array_equal(shared, opened), f"{(shared != opened).any(axis=-1).sum()} pixels differ"
