@@ -22,7 +22,7 @@ export function attachUrlState(lanterna: LanternaViewer, options: UrlStateOption
   const delay = options.delayMs ?? 300;
   let shown: ViewState | null = null; // the rounded state last applied and written
   let timer: ReturnType<typeof setTimeout> | undefined;
-  let busy = false;
+  let chain: Promise<void> = Promise.resolve();
   let stopped = false;
 
   /**
@@ -42,19 +42,14 @@ export function attachUrlState(lanterna: LanternaViewer, options: UrlStateOption
     }
     lanterna.viewer.element.dataset.lanternaLink = hash;
   };
-  /** Run `step` unless another one runs; its errors become notices. */
-  const exclusive = async (step: () => Promise<void>): Promise<void> => {
-    if (stopped || busy) {
-      return;
-    }
-    busy = true;
-    try {
-      await step();
-    } catch (error) {
-      lanterna.reportError(error);
-    } finally {
-      busy = false;
-    }
+  /** Run `step` after the steps before it (restores and writes never overlap); errors become notices. */
+  const exclusive = (step: () => Promise<void>): Promise<void> => {
+    chain = chain.then(async () => {
+      if (!stopped) {
+        await step();
+      }
+    }).catch((error: unknown) => { lanterna.reportError(error); });
+    return chain;
   };
   const write = (): Promise<void> => exclusive(async () => {
     if (lanterna.viewer.element.dataset.lanternaSnapshot !== undefined) {
