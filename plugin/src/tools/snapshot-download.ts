@@ -3,9 +3,9 @@
  */
 import type { LanternaViewer } from '../api/viewer-api';
 
-/** A file-name part: letters, digits, `-` and `.`, other runs as `_` (at most 60 characters). */
+/** A file-name part: letters (accents dropped), digits, `-` and `.`, other runs as `_` (at most 60 characters). */
 export function fileNamePart(text: string): string {
-  return text.normalize('NFKD').replace(/[^\w.-]+/g, '_').replace(/^_+|_+$/g, '').slice(0, 60);
+  return text.normalize('NFKD').replace(/\p{M}+/gu, '').replace(/[^\w.-]+/g, '_').replace(/^_+|_+$/g, '').slice(0, 60);
 }
 
 /** The snapshot's file name: `NAME_layer_mode.png` (NAME: `name`, else the dataset's label). */
