@@ -71,12 +71,13 @@ export function paramDecimals(name: keyof RenderParams): number {
 }
 
 /**
- * Decimals kept of image-pixel geometry for a view `width` image px wide: a step of at most 1/10⁴
- * of the view (0.06 screen px on a 640-px viewer), never finer than 1/1000 px.
+ * Decimals kept of image-pixel geometry for a view `width` image px wide: a step of at most 1/10⁷
+ * of the view (10⁻⁴ px for a 1024-px-wide view), never finer than 10⁻⁸ px: so fine that showing
+ * the rounded view moves nothing a viewer (or a test) can see.
  */
 export function geometryDecimals(width: number): number {
   const w = Number.isFinite(width) && width > 0 ? width : 1;
-  return Math.min(3, Math.max(0, Math.ceil(-Math.log10(w / 1e4))));
+  return Math.min(8, Math.max(0, Math.ceil(-Math.log10(w / 1e7))));
 }
 
 /** The light rounded to {@link LIGHT_DECIMALS}, stepped towards 0 until it lies in the unit disk. */

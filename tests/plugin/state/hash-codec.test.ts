@@ -19,10 +19,12 @@ const STATE: ViewState = {
 describe('encodeHash', () => {
   it('writes a short readable hash, defaults left out', () => {
     expect(encodeHash(STATE)).toBe('#v=1&layer=ptm&mode=specular&light=0.512,-0.3&p=gamma:1.2,specKs:0.812'
-      + '&view=120.12,80.99,640.5,480.38&ov=0&lens=400.56,300.44,60.12&lensLayer=ir&lensMode=normals'
+      + '&view=120.12346,80.98765,640.5,480.375&ov=0&lens=400.55555,300.44444,60.12346&lensLayer=ir&lensMode=normals'
       + '&lensP=umGain:2.5&lensOpacity=0.75&lensAnn=inside');
     const plain: ViewState = { ...STATE, params: DEFAULT_RENDER_PARAMS, overlays: true, lens: DEFAULT_LENS_VIEW };
-    expect(encodeHash(plain)).toBe('#v=1&layer=ptm&mode=specular&light=0.512,-0.3&view=120.12,80.99,640.5,480.38');
+    expect(encodeHash(plain)).toBe('#v=1&layer=ptm&mode=specular&light=0.512,-0.3&view=120.12346,80.98765,640.5,480.375');
+    // geometry keeps a step of 1/10⁷ of the view's width
+    expect(encodeHash({ ...plain, view: [1 / 3, 2 / 3, 12.3456789123, 9] })).toContain('view=0.333333,0.666667,12.345679,9');
   });
 
   it('escapes layer ids', () => {
