@@ -73,3 +73,14 @@ export { dequantise } from './measure/dequantise';
 export { measurementCaption } from './measure/caption';
 export { brdfSlice, sliceAngles, toneMapSlice, wardLobe, SLICE_SIZE } from './math/brdf-slice';
 export { reflectanceDisk, diskLight, hshColor, ptmColor, DISK_SIZE } from './math/reflectance-disk';
+export {
+  DEFAULT_LENS_VIEW, roundState, sameState, type ImageRect, type LensViewState, type ViewState, type ViewStateUpdate,
+} from './state/view-state';
+export { decodeHash, encodeHash, checkLayers, HASH_VERSION, type DecodedHash } from './state/hash-codec';
+export { crc32, encodePng, readChunks, readTexts, textChunk, PngError, type PngChunk } from './state/png';
+export { chooseScaleBar, type ScaleBar } from './math/scale-bar';
+export type { SnapshotOptions, ViewStateApi } from './api/view-state-api';
+export { mountViewTools, type ViewTools, type ViewToolsOptions } from './tools/view-tools';
+export { attachUrlState, type UrlStateOptions } from './tools/url-state';
+export { createHelpOverlay, type HelpOverlay } from './tools/help-overlay';
+export { createScaleBar, type ScaleBarWidget } from './tools/scale-bar';

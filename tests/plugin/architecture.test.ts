@@ -24,30 +24,33 @@ const ALLOWED: Readonly<Record<string, readonly string[]>> = {
   tiles: ['errors', 'iiif'],
   lens: ['errors', 'math', 'render'],
   presets: ['errors', 'render'],
+  state: ['errors', 'render', 'lens'],
   ui: ['errors', 'math'],
   // overlay-state sanitises the hypertext with ui/sanitize-html (a pure function).
   overlay: ['errors', 'iiif', 'tiles', 'ui'],
   drawer: ['errors', 'math', 'iiif', 'render', 'gl', 'layers', 'tiles', 'lens'],
-  api: ['errors', 'math', 'iiif', 'render', 'lens', 'overlay', 'ui', 'drawer', 'presets'],
+  api: ['errors', 'math', 'iiif', 'render', 'lens', 'overlay', 'ui', 'drawer', 'presets', 'state'],
   panel: ['errors', 'math', 'iiif', 'render', 'lens', 'overlay', 'ui', 'api', 'presets'],
   viewer: ['errors', 'math', 'iiif', 'render', 'layers', 'tiles', 'lens', 'overlay', 'ui', 'drawer', 'api', 'panel',
-    'presets'],
+    'presets', 'state'],
   // the measurement mode reads a viewer's planes through its public API
   measure: ['errors', 'math', 'iiif', 'tiles', 'ui', 'api'],
+  // The page's view tools (URL hash, snapshot button, scale bar, help, keys), on the viewer API.
+  tools: ['errors', 'math', 'render', 'lens', 'state', 'api'],
   index: ['errors', 'math', 'iiif', 'render', 'gl', 'layers', 'tiles', 'lens', 'ui', 'overlay', 'drawer', 'api',
-    'panel', 'viewer', 'presets', 'measure'],
+    'panel', 'viewer', 'presets', 'state', 'measure', 'tools'],
   demo: ['index'],
   simple: ['index'],
 };
 
 /** The packages a part may import. */
 const PACKAGES: Readonly<Record<string, readonly string[]>> = {
-  openseadragon: ['tiles', 'lens', 'overlay', 'ui', 'drawer', 'api', 'viewer', 'measure'],
+  openseadragon: ['tiles', 'lens', 'overlay', 'ui', 'drawer', 'api', 'viewer', 'measure', 'tools'],
   'twgl.js': ['gl', 'layers', 'drawer'],
 };
 
 /** Parts that are pure: no DOM, no GL (they run, and are tested, in Node). */
-const PURE = ['errors', 'math', 'iiif', 'render', 'presets'];
+const PURE = ['errors', 'math', 'iiif', 'render', 'presets', 'state'];
 const DOM_OR_GL = new RegExp('\\b(document|window|navigator|requestAnimationFrame|createImageBitmap|OffscreenCanvas'
   + '|HTML\\w*Element|WebGL\\w*)\\b');
 

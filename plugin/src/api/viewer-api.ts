@@ -16,6 +16,7 @@ import type { Preset, PresetLibrary, PresetTarget } from '../presets/library';
 import type { RenderMode, ShadingClass } from '../render/modes';
 import type { RenderParams } from '../render/params';
 import type { DragMode } from '../ui/interaction';
+import type { ViewStateApi } from './view-state-api';
 
 /** Options of {@link createViewer}. */
 export interface CreateViewerOptions {
@@ -91,7 +92,7 @@ export class RenderModeError extends LanternaError {}
 export class UnknownLayerError extends LanternaError {}
 
 /** A running Lanterna viewer. */
-export interface LanternaViewer {
+export interface LanternaViewer extends ViewStateApi {
   /** Resolves once the manifest is loaded and the default layer is added; rejects with a {@link LanternaError}. */
   readonly ready: Promise<void>;
   /** The OpenSeadragon viewer. */

@@ -8,7 +8,8 @@
  */
 import {
   createAbout, createControls, createLensControls, createLightTools, createPresetsPanel, createViewer,
-  LanternaError, MODE_LABELS, createMeasurement, type MeasurementWidget, UnknownLayerError, isRenderMode, type LanternaViewer,
+  LanternaError, MODE_LABELS, createMeasurement, type MeasurementWidget, UnknownLayerError, isRenderMode, mountViewTools,
+  type LanternaViewer,
 } from '../index';
 import { describeOpenError, showErrorBox } from './error-page';
 import { createLayout } from './layout';
@@ -130,6 +131,11 @@ function open(page: PageOptions, fallback: string | null = null): void {
       wireToolbar(lanterna, createLayout(lanterna, panel, toolbar, toggle), attempt);
       wireMeasureButton(lanterna, measurement);
     }
+    // View tools (issue #13): the URL hash, Snapshot and ? buttons, scale bar, help overlay, canvas keys.
+    mountViewTools(lanterna, {
+      toolbar: document.getElementById('tools') ?? toolbar,
+      home: () => { document.getElementById('home')?.click(); },
+    });
   }, (error: unknown) => {
     lanterna.destroy();
     stopLoading();

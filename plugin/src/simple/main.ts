@@ -5,7 +5,7 @@
  * the viewer as `window.lanterna`. `document.body.dataset.state` is `loading`, `ready` or
  * `unavailable`; `dataset.idleResets` counts the kiosk's returns to the start.
  */
-import { createViewer, type LanternaViewer } from '../index';
+import { createScaleBar, createViewer, type LanternaViewer } from '../index';
 import { wireFullscreenButton } from './fullscreen';
 import { createIdleTimer, type IdleTimer } from './idle-timer';
 import { lockDownKiosk } from './kiosk';
@@ -81,6 +81,7 @@ async function open(options: SimplePageOptions): Promise<void> {
   document.title = label ? `${label} · Lanterna` : 'Lanterna';
   screen.hide();
   panel.hidden = false;
+  createScaleBar(lanterna); // shown when the canvas has a physical scale (a physdim service)
   const simple = await startSimpleViewer(lanterna, elements, note, options.kiosk);
   body.dataset.state = 'ready';
   idle?.destroy();

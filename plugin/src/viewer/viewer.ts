@@ -31,6 +31,8 @@ import { createOsdViewer, relightDrawerOf, sizeTileCache } from './osd-viewer';
 import { OverlayWiring } from './overlay-wiring';
 import { applyPresetEntry, capturePreset } from './preset-actions';
 import { openPresetLibrary, presetDataset, selectLayers } from './preset-library';
+import { snapshotPng } from './snapshot';
+import { applyViewState, readViewState } from './view-state';
 
 /**
  * Create a viewer for a Lanterna manifest.
@@ -298,6 +300,9 @@ export function createViewer(options: CreateViewerOptions): LanternaViewer {
     },
     applyPreset: (target, index) => applyPresetEntry(api, library, target, index),
     capturePreset: (target, label, withView = false) => capturePreset(api, target, label, withView),
+    getState: () => readViewState(api),
+    setState: (state) => applyViewState(api, state),
+    snapshot: (snapshotOptions) => snapshotPng(api, snapshotOptions),
     destroy() {
       if (destroyed) {
         return;
