@@ -62,8 +62,8 @@ test-unit: install
 test-python: install build
 	$(VENV)/bin/pytest
 
-screenshot: install build ## retake docs/screenshot.png from the demo dataset
-	$(PY) tools/screenshot.py --root datasets --out docs/screenshot.png
+screenshot: install build ## retake the README screenshots (docs/screenshot*.png) from the demo dataset
+	$(PY) tools/screenshot.py --root datasets --out-dir docs
 
 clean:
 	rm -rf plugin/dist datasets tests/browser/out build dist

@@ -96,6 +96,13 @@ async function main() {
       await page.goto(p.url, { waitUntil: 'load' });
       await page.waitForFunction(() => window.lanternaMeasure !== undefined);
       await page.evaluate(() => window.lanterna.ready);
+      // the gestures and the hover are on the image: close the page's panel if it is open over it
+      await page.evaluate(() => {
+        const toggle = document.getElementById('panel-toggle');
+        if (toggle?.getAttribute('aria-expanded') === 'true') {
+          toggle.click();
+        }
+      });
       const box = await page.evaluate(() => {
         const r = window.lanterna.viewer.element.getBoundingClientRect();
         return { x: r.left, y: r.top };

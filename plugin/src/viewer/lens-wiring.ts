@@ -118,6 +118,14 @@ export class LensWiring {
       this.#options.prepare(slot.info.layer, next.mode, next.params);
     }
     this.#lens = next;
+    if (update.center !== undefined) {
+      // A centre given now is in the element's size now, which OpenSeadragon may not have seen yet
+      // (its resize event comes a frame later): the next resize starts from this size.
+      const element = this.#viewer.element;
+      if (element.clientWidth > 0 && element.clientHeight > 0) {
+        this.#size = { width: element.clientWidth, height: element.clientHeight };
+      }
+    }
     return this.apply();
   }
 

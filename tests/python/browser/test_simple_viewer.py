@@ -309,8 +309,6 @@ def test_touch_one_finger_lights_two_fingers_zoom_or_move_the_lens(
     assert t4.state["view"] == t3.state["view"] and _light(t4) == pytest.approx(_light(t3))
 
 
-@pytest.mark.xfail(strict=True, reason="a pinch moves the light to the first finger: fixed in "
-                   "ui/interaction.ts by the engine work of issue #13, not merged here yet")
 def test_a_pinch_outside_the_lens_leaves_the_light(touch_reads: dict[str, Read]) -> None:
     assert _light(touch_reads["t2"]) == pytest.approx(_light(touch_reads["t1"]), abs=1e-6)
 
