@@ -8,6 +8,7 @@ when a phone turns to landscape.
 
 from __future__ import annotations
 
+import json
 from collections.abc import Iterator
 from dataclasses import dataclass
 from pathlib import Path
@@ -20,7 +21,7 @@ from lanterna.tiler.dataset.layers import add_image_layer
 from lanterna.tiler.dataset.writer import DatasetWriter
 from lanterna.tiler.demo.dataset import DEMO_TEXTS, build_demo
 from lanterna.tiler.iiif.pyramid import vips_from_array
-from tests.python.fixtures import browser
+from tests.python.fixtures import browser, page_script
 from tests.python.fixtures.servers import LiveServer
 
 pytestmark = pytest.mark.browser
@@ -113,3 +114,23 @@ def test_the_lens_stays_inside_the_viewer_when_the_phone_turns(served: Served,
     assert 0 <= x - r and x + r <= 844 and 0 <= y - r and y + r <= 390, meta["lens"]
     # it kept its offset from the centre along x (the viewer's centre moved by 227 px)
     assert x == pytest.approx(195 + (844 - 390) / 2)
+
+
+def test_each_demo_preset_gives_the_pixels_of_its_values(served: Served, tmp_path: Path) -> None:
+    """The demo's own library (tiler/demo/presets.py), entry by entry, against the same calls."""
+    library = json.loads((served.root / "demo" / "presets.json").read_text())
+    steps: list[dict[str, Any]] = [page_script.READY]
+    for target in ("base", "lens"):
+        for k, entry in enumerate(library[target]):
+            preset = library["presets"][entry["preset"]]
+            steps += [page_script.evaluate(f"() => window.lanterna.applyPreset('{target}', {k})"),
+                      page_script.FRAME,
+                      page_script.by_hand(target, preset, entry.get("opacity", 1)),
+                      page_script.FRAME]
+    values = page_script.run_page(served.viewer("demo") + "&minPixelRatio=0.75", steps, tmp_path,
+                                  (800, 600), timeout=600)["values"]
+    frames = [page_script.frame(v) for v in values if isinstance(v, dict) and "base64" in v]
+    assert len(frames) == 2 * (len(library["base"]) + len(library["lens"])) >= 8
+    for k in range(0, len(frames), 2):
+        assert np.array_equal(frames[k], frames[k + 1]), f"entry {k // 2}"
+    assert len({frames[k].tobytes() for k in range(0, len(frames), 2)}) == len(frames) // 2
