@@ -20,11 +20,8 @@
 import { readFileSync, writeFileSync } from 'node:fs';
 import process from 'node:process';
 import { chromium } from 'playwright-core';
-import { runGesture } from './page-actions.mjs';
+import { CHROMIUM, CHROMIUM_ARGS, runGesture } from './page-actions.mjs';
 
-const CHROMIUM = process.env.LANTERNA_CHROMIUM ?? '/usr/bin/chromium';
-const ARGS = ['--no-sandbox', '--disable-gpu', '--disable-background-networking', '--disable-component-update',
-  '--disable-sync', '--no-first-run', '--disable-quic'];
 
 async function prepare(page, c) {
   await page.evaluate(async (c) => {
@@ -80,7 +77,7 @@ function state(page) {
 async function main() {
   const spec = JSON.parse(readFileSync(process.argv[2], 'utf8'));
   const timeout = spec.timeoutMs ?? 60000;
-  const browser = await chromium.launch({ executablePath: CHROMIUM, args: ARGS, headless: true });
+  const browser = await chromium.launch({ executablePath: CHROMIUM, args: CHROMIUM_ARGS, headless: true });
   const errors = [];
   const result = { pages: [] };
   try {

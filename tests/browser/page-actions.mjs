@@ -16,6 +16,30 @@
 //   {"match": "regex", "hang": true}  (never answer)
 //   {"match": "regex", "abort": "failed"}  (a network error: playwright's route.abort codes)
 //   "times": n  (only the first n matching requests; later ones go to the server)
+import process from 'node:process';
+
+/** Debian's Chromium (never a downloaded browser), and the flags every driver launches it with. */
+export const CHROMIUM = process.env.LANTERNA_CHROMIUM ?? '/usr/bin/chromium';
+export const CHROMIUM_ARGS = [
+  '--no-sandbox', '--disable-gpu', '--disable-background-networking', '--disable-component-update',
+  '--disable-sync', '--no-first-run', '--disable-quic',
+];
+
+/**
+ * Collect a page's errors: every page error, and every console error (all of them in
+ * `consoleErrors`; those no regex of `allowed` matches also in `pageErrors`, which fail a run).
+ */
+export function watchErrors(page, allowed, pageErrors, consoleErrors) {
+  page.on('pageerror', (err) => pageErrors.push(`page error: ${err.message}`));
+  page.on('console', (msg) => {
+    if (msg.type() === 'error') {
+      consoleErrors.push(msg.text());
+      if (!allowed.some((re) => re.test(msg.text()))) {
+        pageErrors.push(`console error: ${msg.text()}`);
+      }
+    }
+  });
+}
 
 export const GESTURE_TYPES = ['touch', 'mouse', 'pen', 'wheel', 'click', 'select', 'wait', 'viewport'];
 

@@ -26,11 +26,8 @@ import { readFileSync, writeFileSync } from 'node:fs';
 import { basename } from 'node:path';
 import process from 'node:process';
 import { chromium } from 'playwright-core';
-import { installRoutes } from './page-actions.mjs';
+import { CHROMIUM, CHROMIUM_ARGS, installRoutes, watchErrors } from './page-actions.mjs';
 
-const CHROMIUM = process.env.LANTERNA_CHROMIUM ?? '/usr/bin/chromium';
-const ARGS = ['--no-sandbox', '--disable-gpu', '--disable-background-networking', '--disable-component-update',
-  '--disable-sync', '--no-first-run', '--disable-quic'];
 
 function withTimeout(promise, ms, what) {
   let timer;
@@ -86,7 +83,7 @@ async function runStep(page, step, timeoutMs) {
 async function main() {
   const spec = JSON.parse(readFileSync(process.argv[2], 'utf8'));
   const timeoutMs = spec.timeoutMs ?? 60000;
-  const browser = await chromium.launch({ executablePath: CHROMIUM, args: ARGS, headless: true });
+  const browser = await chromium.launch({ executablePath: CHROMIUM, args: CHROMIUM_ARGS, headless: true });
   const pageErrors = [];
   const consoleErrors = [];
   const requests = [];
@@ -100,15 +97,7 @@ async function main() {
       ...(spec.mobile ? { hasTouch: true, isMobile: true } : {}),
     });
     const page = await context.newPage();
-    page.on('pageerror', (err) => pageErrors.push(`page error: ${err.message}`));
-    page.on('console', (msg) => {
-      if (msg.type() === 'error') {
-        consoleErrors.push(msg.text());
-        if (!allowed.some((re) => re.test(msg.text()))) {
-          pageErrors.push(`console error: ${msg.text()}`);
-        }
-      }
-    });
+    watchErrors(page, allowed, pageErrors, consoleErrors);
     page.on('request', (req) => {
       if (record?.test(req.url())) {
         requests.push({ method: req.method(), url: req.url(), headers: req.headers(), body: req.postData() });

@@ -47,13 +47,8 @@
 import { readFileSync, writeFileSync } from 'node:fs';
 import process from 'node:process';
 import { chromium } from 'playwright-core';
-import { GESTURE_TYPES, installRoutes, loseAndRestoreContext, readNotices, runGesture } from './page-actions.mjs';
+import { CHROMIUM, CHROMIUM_ARGS, GESTURE_TYPES, installRoutes, loseAndRestoreContext, readNotices, runGesture, watchErrors } from './page-actions.mjs';
 
-const CHROMIUM = process.env.LANTERNA_CHROMIUM ?? '/usr/bin/chromium';
-const ARGS = [
-  '--no-sandbox', '--disable-gpu', '--disable-background-networking', '--disable-component-update',
-  '--disable-sync', '--no-first-run', '--disable-quic',
-];
 
 class RenderError extends Error {}
 
@@ -168,7 +163,7 @@ async function main() {
   const timeoutMs = spec.timeoutMs ?? 60000;
   const viewport = { width: spec.viewport?.width ?? 640, height: spec.viewport?.height ?? 480 };
   const browser = await chromium.launch({
-    executablePath: CHROMIUM, args: [...ARGS, ...(spec.launchArgs ?? [])], headless: true,
+    executablePath: CHROMIUM, args: [...CHROMIUM_ARGS, ...(spec.launchArgs ?? [])], headless: true,
   });
   const pageErrors = [];
   const consoleErrors = [];
@@ -186,15 +181,7 @@ async function main() {
     let requests = [];
     const allRequests = [];
     page.on('request', (req) => { requests.push(req.url()); allRequests.push(req.url()); });
-    page.on('pageerror', (err) => pageErrors.push(`page error: ${err.message}`));
-    page.on('console', (msg) => {
-      if (msg.type() === 'error') {
-        consoleErrors.push(msg.text());
-        if (!allowed.some((re) => re.test(msg.text()))) {
-          pageErrors.push(`console error: ${msg.text()}`);
-        }
-      }
-    });
+    watchErrors(page, allowed, pageErrors, consoleErrors);
     const check = () => {
       if (pageErrors.length > 0) {
         throw new RenderError(pageErrors.join('\n'));

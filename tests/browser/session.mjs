@@ -25,12 +25,8 @@ import { writeFileSync } from 'node:fs';
 import { join } from 'node:path';
 import process from 'node:process';
 import { chromium } from 'playwright-core';
+import { CHROMIUM, CHROMIUM_ARGS } from './page-actions.mjs';
 
-const CHROMIUM = process.env.LANTERNA_CHROMIUM ?? '/usr/bin/chromium';
-const ARGS = [
-  '--no-sandbox', '--disable-gpu', '--disable-background-networking', '--disable-component-update',
-  '--disable-sync', '--no-first-run', '--disable-quic',
-];
 
 function withTimeout(promise, ms, what) {
   let timer;
@@ -84,7 +80,7 @@ async function runStep(page, step, saved, out) {
 async function main() {
   const spec = JSON.parse((await import('node:fs')).readFileSync(process.argv[2], 'utf8'));
   const timeoutMs = spec.timeoutMs ?? 60000;
-  const browser = await chromium.launch({ executablePath: CHROMIUM, args: ARGS, headless: true });
+  const browser = await chromium.launch({ executablePath: CHROMIUM, args: CHROMIUM_ARGS, headless: true });
   const saved = {};
   const errors = [];
   try {

@@ -24,13 +24,8 @@
 import { readFileSync, writeFileSync } from 'node:fs';
 import process from 'node:process';
 import { chromium } from 'playwright-core';
-import { GESTURE_TYPES, installRoutes, runGesture } from './page-actions.mjs';
+import { CHROMIUM, CHROMIUM_ARGS, GESTURE_TYPES, installRoutes, runGesture, watchErrors } from './page-actions.mjs';
 
-const CHROMIUM = process.env.LANTERNA_CHROMIUM ?? '/usr/bin/chromium';
-const ARGS = [
-  '--no-sandbox', '--disable-gpu', '--disable-background-networking', '--disable-component-update',
-  '--disable-sync', '--no-first-run', '--disable-quic',
-];
 const STEPS = [...GESTURE_TYPES, 'api', 'waitFor', 'waitForIdleReset', 'read', 'screenshot'];
 
 class DriveError extends Error {}
@@ -118,7 +113,7 @@ async function main() {
     }
   }
   const timeoutMs = spec.timeoutMs ?? 60000;
-  const browser = await chromium.launch({ executablePath: CHROMIUM, args: ARGS, headless: true });
+  const browser = await chromium.launch({ executablePath: CHROMIUM, args: CHROMIUM_ARGS, headless: true });
   const pageErrors = [];
   const consoleErrors = [];
   const dialogs = [];
@@ -137,15 +132,7 @@ async function main() {
     let idleResets = 0;
     page.on('request', (req) => { all.push(req.url()); since.push(req.url()); });
     page.on('dialog', (d) => { dialogs.push(`${d.type()}: ${d.message()}`); void d.dismiss(); });
-    page.on('pageerror', (err) => pageErrors.push(`page error: ${err.message}`));
-    page.on('console', (msg) => {
-      if (msg.type() === 'error') {
-        consoleErrors.push(msg.text());
-        if (!allowed.some((re) => re.test(msg.text()))) {
-          pageErrors.push(`console error: ${msg.text()}`);
-        }
-      }
-    });
+    watchErrors(page, allowed, pageErrors, consoleErrors);
     const check = () => {
       if (pageErrors.length > 0) {
         throw new DriveError(pageErrors.join('\n'));
