@@ -10,3 +10,18 @@ export class LanternaError extends Error {
     this.name = new.target.name;
   }
 }
+
+/**
+ * Run `action` and hand any error it throws, or its promise rejects with, to `report` (the page's
+ * controls use it so that a failed action becomes a notice, never an unhandled error).
+ */
+export function attempt(action: () => unknown, report: (error: unknown) => void): void {
+  try {
+    const result = action();
+    if (result instanceof Promise) {
+      result.catch(report);
+    }
+  } catch (error) {
+    report(error);
+  }
+}

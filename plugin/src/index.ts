@@ -21,7 +21,7 @@ export {
   type RelightLayer, type PlaneGroup, type LayerType, type PtmColorspace, type InputColorSpace,
 } from './iiif/relight-service';
 export { imageGeometry, commonGeometry, type ImageGeometry } from './iiif/image-info';
-export { LanternaError } from './errors';
+export { LanternaError, attempt } from './errors';
 export {
   ManifestError, MissingRelightServiceError, RelightServiceError, ImageInfoError, MismatchedPlanesError, FetchError,
   OverlayError,

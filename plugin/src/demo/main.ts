@@ -8,7 +8,7 @@
  */
 import {
   createAbout, createControls, createLensControls, createLightTools, createPresetsPanel, createViewer,
-  LanternaError, MODE_LABELS, createMeasurement, type MeasurementWidget, UnknownLayerError, isRenderMode, mountViewTools,
+  LanternaError, MODE_LABELS, attempt as attemptReporting, createMeasurement, type MeasurementWidget, UnknownLayerError, isRenderMode, mountViewTools,
   type LanternaViewer,
 } from '../index';
 import { describeOpenError, showErrorBox } from './error-page';
@@ -96,14 +96,7 @@ function open(page: PageOptions, fallback: string | null = null): void {
   const stopLoading = progress ? trackLoading(lanterna, progress) : () => undefined;
   /** Run an action of a control; its errors become notices over the viewer. */
   const attempt = (action: () => unknown): void => {
-    try {
-      const result = action();
-      if (result instanceof Promise) {
-        result.catch((error: unknown) => { lanterna.reportError(error); });
-      }
-    } catch (error) {
-      lanterna.reportError(error);
-    }
+    attemptReporting(action, (error) => { lanterna.reportError(error); });
   };
   if (label) {
     label.textContent = 'Loading…';

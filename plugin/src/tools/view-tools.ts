@@ -4,6 +4,7 @@
  * the canvas keys (`docs/viewer-api.md`).
  */
 import type { LanternaViewer } from '../api/viewer-api';
+import { attempt as attemptReporting } from '../errors';
 import { createHelpOverlay, type HelpOverlay } from './help-overlay';
 import { attachKeys } from './keys';
 import { createScaleBar, type ScaleBarWidget } from './scale-bar';
@@ -54,14 +55,7 @@ export function mountViewTools(lanterna: LanternaViewer, options: ViewToolsOptio
     lanterna.reportError(error);
   });
   const attempt = (action: () => unknown): void => {
-    try {
-      const result = action();
-      if (result instanceof Promise) {
-        result.catch((error: unknown) => { lanterna.reportError(error); });
-      }
-    } catch (error) {
-      lanterna.reportError(error);
-    }
+    attemptReporting(action, (error) => { lanterna.reportError(error); });
   };
   const detachKeys = attachKeys(lanterna, {
     lens: () => { attempt(() => lanterna.setLens({ enabled: !lanterna.getLens().enabled })); },
