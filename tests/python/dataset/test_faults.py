@@ -39,8 +39,17 @@ def _timed(args: list[str]) -> float:
     return time.monotonic() - t0
 
 
-def _killed(args: list[str], delay: float) -> None:
+def _killed(args: list[str], delay: float, writing_in: Path | None = None) -> None:
+    """Run ``args`` and kill it ``delay`` s after it starts or, given ``writing_in``, after a new
+    temporary folder of a write appears there (so that the kill lands mid-write however slow the
+    process is to start on a loaded machine)."""
+    earlier = {e.name for e in writing_in.iterdir()} if writing_in is not None else set()
     proc = subprocess.Popen(args, cwd=REPO, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    if writing_in is not None:  # a new temporary folder: this process is writing
+        deadline = time.monotonic() + 60
+        while proc.poll() is None and time.monotonic() < deadline and not any(
+                ".tmp-" in e.name and e.name not in earlier for e in writing_in.iterdir()):
+            time.sleep(0.005)
     time.sleep(delay)
     proc.send_signal(signal.SIGKILL)  # nothing if it has finished: then the write is complete
     proc.wait(30)
@@ -97,8 +106,11 @@ def test_kill_9_during_annotate_build_keeps_the_overlay_whole(two_layers: Path) 
     root = two_layers.parent
     duration = _timed(_annotate(two_layers, "vis"))
     interrupted = 0
-    for delay in kill_points(duration, 6, seed=11):
-        _killed(_annotate(two_layers, "uv"), delay)
+    # Three kills timed from the start, three from the moment the write's temporary folder appears.
+    kills = [(delay, None) for delay in kill_points(duration, 3, seed=11)] + [
+        (delay, root) for delay in kill_points(duration / 4, 3, seed=12)]
+    for delay, writing_in in kills:
+        _killed(_annotate(two_layers, "uv"), delay, writing_in)
         desc = servable(root, "obj")
         assert _overlay_levels(desc, "vis") == [0, 1, 2]
         assert _overlay_levels(desc, "uv") in ([], [0, 1, 2])
