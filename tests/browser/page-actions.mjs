@@ -41,6 +41,29 @@ export function watchErrors(page, allowed, pageErrors, consoleErrors) {
   });
 }
 
+/** `promise`, or a rejection with `new ErrorClass("timed out after … s: what")` after `ms`. */
+export function withTimeout(promise, ms, what, ErrorClass = Error) {
+  let timer;
+  const timeout = new Promise((_, reject) => {
+    timer = setTimeout(() => reject(new ErrorClass(`timed out after ${ms / 1000} s: ${what}`)), ms);
+  });
+  return Promise.race([promise, timeout]).finally(() => clearTimeout(timer));
+}
+
+/** Wait until every tile of the view is loaded and drawn; the frame as base64 RGBA. */
+export function readFrame(page) {
+  return page.evaluate(async () => {
+    const l = window.lanterna;
+    await l.whenFullyLoaded();
+    const { width, height, data } = l.readPixels();
+    let binary = '';
+    for (let i = 0; i < data.length; i += 0x8000) {
+      binary += String.fromCharCode.apply(null, data.subarray(i, i + 0x8000));
+    }
+    return { width, height, base64: btoa(binary) };
+  });
+}
+
 export const GESTURE_TYPES = ['touch', 'mouse', 'pen', 'wheel', 'click', 'select', 'wait', 'viewport'];
 
 function lerp(a, b, t) {

@@ -26,16 +26,8 @@ import { readFileSync, writeFileSync } from 'node:fs';
 import { basename } from 'node:path';
 import process from 'node:process';
 import { chromium } from 'playwright-core';
-import { CHROMIUM, CHROMIUM_ARGS, installRoutes, watchErrors } from './page-actions.mjs';
+import { CHROMIUM, CHROMIUM_ARGS, installRoutes, watchErrors, withTimeout } from './page-actions.mjs';
 
-
-function withTimeout(promise, ms, what) {
-  let timer;
-  const timeout = new Promise((_, reject) => {
-    timer = setTimeout(() => reject(new Error(`timed out after ${ms / 1000} s: ${what}`)), ms);
-  });
-  return Promise.race([promise, timeout]).finally(() => clearTimeout(timer));
-}
 
 async function runStep(page, step, timeoutMs) {
   if (step.eval !== undefined) {

@@ -47,7 +47,10 @@
 import { readFileSync, writeFileSync } from 'node:fs';
 import process from 'node:process';
 import { chromium } from 'playwright-core';
-import { CHROMIUM, CHROMIUM_ARGS, GESTURE_TYPES, installRoutes, loseAndRestoreContext, readNotices, runGesture, watchErrors } from './page-actions.mjs';
+import {
+  CHROMIUM, CHROMIUM_ARGS, GESTURE_TYPES, installRoutes, loseAndRestoreContext, readNotices, runGesture,
+  watchErrors, withTimeout as timeoutWith,
+} from './page-actions.mjs';
 
 
 class RenderError extends Error {}
@@ -95,13 +98,8 @@ function readSpec(path) {
 }
 
 /** Reject after `ms` with a clear message, unless `promise` settles first. */
-function withTimeout(promise, ms, what) {
-  let timer;
-  const timeout = new Promise((_, reject) => {
-    timer = setTimeout(() => reject(new RenderError(`timed out after ${ms / 1000} s: ${what}`)), ms);
-  });
-  return Promise.race([promise, timeout]).finally(() => clearTimeout(timer));
-}
+/** The shared timeout, failing with a RenderError. */
+const withTimeout = (promise, ms, what) => timeoutWith(promise, ms, what, RenderError);
 
 /** Wait until every tile is loaded and drawn, then read the frame back (and the viewer's state). */
 function readFrame(page) {

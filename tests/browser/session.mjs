@@ -25,29 +25,8 @@ import { writeFileSync } from 'node:fs';
 import { join } from 'node:path';
 import process from 'node:process';
 import { chromium } from 'playwright-core';
-import { CHROMIUM, CHROMIUM_ARGS } from './page-actions.mjs';
+import { CHROMIUM, CHROMIUM_ARGS, readFrame, withTimeout } from './page-actions.mjs';
 
-
-function withTimeout(promise, ms, what) {
-  let timer;
-  const timeout = new Promise((_, reject) => {
-    timer = setTimeout(() => reject(new Error(`timed out after ${ms / 1000} s: ${what}`)), ms);
-  });
-  return Promise.race([promise, timeout]).finally(() => clearTimeout(timer));
-}
-
-async function readFrame(page) {
-  return page.evaluate(async () => {
-    const l = window.lanterna;
-    await l.whenFullyLoaded();
-    const { width, height, data } = l.readPixels();
-    let binary = '';
-    for (let i = 0; i < data.length; i += 0x8000) {
-      binary += String.fromCharCode.apply(null, data.subarray(i, i + 0x8000));
-    }
-    return { width, height, base64: btoa(binary) };
-  });
-}
 
 async function runStep(page, step, saved, out) {
   if (step.download !== undefined) {

@@ -24,7 +24,10 @@
 import { readFileSync, writeFileSync } from 'node:fs';
 import process from 'node:process';
 import { chromium } from 'playwright-core';
-import { CHROMIUM, CHROMIUM_ARGS, GESTURE_TYPES, installRoutes, runGesture, watchErrors } from './page-actions.mjs';
+import {
+  CHROMIUM, CHROMIUM_ARGS, GESTURE_TYPES, installRoutes, readFrame, runGesture, watchErrors,
+  withTimeout as timeoutWith,
+} from './page-actions.mjs';
 
 const STEPS = [...GESTURE_TYPES, 'api', 'waitFor', 'waitForIdleReset', 'read', 'screenshot'];
 
@@ -79,27 +82,8 @@ function describe(page) {
   });
 }
 
-/** Wait until every tile is drawn; the frame as base64 RGBA. */
-function readFrame(page) {
-  return page.evaluate(async () => {
-    const l = window.lanterna;
-    await l.whenFullyLoaded();
-    const { width, height, data } = l.readPixels();
-    let binary = '';
-    for (let i = 0; i < data.length; i += 0x8000) {
-      binary += String.fromCharCode.apply(null, data.subarray(i, i + 0x8000));
-    }
-    return { width, height, base64: btoa(binary) };
-  });
-}
-
-function withTimeout(promise, ms, what) {
-  let timer;
-  const timeout = new Promise((_, reject) => {
-    timer = setTimeout(() => reject(new DriveError(`timed out after ${ms / 1000} s: ${what}`)), ms);
-  });
-  return Promise.race([promise, timeout]).finally(() => clearTimeout(timer));
-}
+/** The shared timeout, failing with a DriveError. */
+const withTimeout = (promise, ms, what) => timeoutWith(promise, ms, what, DriveError);
 
 async function main() {
   const path = process.argv[2];
