@@ -11,7 +11,6 @@ in measure mode must leave the light and the view alone and show the widget.
 from __future__ import annotations
 
 import json
-import subprocess
 from collections.abc import Iterator
 from pathlib import Path
 from typing import Any
@@ -118,12 +117,7 @@ def run(tmp_path_factory: pytest.TempPathFactory) -> Iterator[tuple[Path, dict[s
                           {"url": f"{url}&measure=1", "cases": hover},
                           {"url": url, "cases": hover}],
                 "viewport": {"width": VIEW[0], "height": VIEW[1]}, "out": str(tmp / "out.json")}
-        browser.require_browser()
-        (tmp / "spec.json").write_text(json.dumps(spec))
-        proc = subprocess.run(["node", str(REPO / "tests/browser/measure.mjs"),
-                               str(tmp / "spec.json")], capture_output=True, text=True,
-                              timeout=600, cwd=REPO)
-        assert proc.returncode == 0, f"measure.mjs failed:\n{proc.stdout}\n{proc.stderr}"
+        browser.run_driver(REPO / "tests/browser/measure.mjs", spec, tmp / "spec.json", 600)
         yield tmp / "measure", blocks, json.loads((tmp / "out.json").read_text())
     finally:
         server.close()

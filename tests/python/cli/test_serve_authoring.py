@@ -4,24 +4,16 @@ the token), a bad token file is one line before anything else, the environment w
 from __future__ import annotations
 
 import json
-import os
-import signal
-import subprocess
-import sys
-import threading
 import urllib.request
 from pathlib import Path
-from queue import Empty, Queue
 
 import pytest
 
 from lanterna.cli import main
 from tests.python.fixtures.presets import read_json, small_dataset, small_library
+from tests.python.fixtures.servers import lanterna_serve
 
-LANTERNA = Path(sys.executable).parent / "lanterna"
 TOKEN = "environment-token-0123456789"
-#: Deadline for the server to print its first lines (not a performance bound).
-START_DEADLINE_S = 60
 
 
 @pytest.fixture(scope="module")
@@ -34,33 +26,14 @@ def root(tmp_path_factory: pytest.TempPathFactory) -> Path:
 def _startup(root: Path, env: dict[str, str], *options: str,
              put: dict[str, object] | None = None) -> tuple[list[str], int | None]:
     """Start ``lanterna serve``, read its lines up to the authoring one, PUT ``put``, stop it."""
-    proc = subprocess.Popen([str(LANTERNA), "serve", str(root), "--port", "0", *options],
-                            stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True,
-                            env={**os.environ, **env})
-    assert proc.stdout is not None
-    stdout = proc.stdout
-    queue: Queue[str] = Queue()
-    reader = threading.Thread(target=lambda: [queue.put(line) for line in stdout], daemon=True)
-    reader.start()
-    lines: list[str] = []
     status = None
-    try:
-        while not any(line.startswith("Authoring API") for line in lines):
-            lines.append(queue.get(timeout=START_DEADLINE_S))
+    with lanterna_serve(root, *options, env=env) as (url, lines):
         if put is not None:
-            url = lines[0].split(" at ", 1)[1].split("/ ", 1)[0]
             req = urllib.request.Request(f"{url}/api/datasets/obj/presets", method="PUT",
                                          data=json.dumps(put).encode(),
                                          headers={"Authorization": f"Bearer {TOKEN}"})
             with urllib.request.urlopen(req, timeout=60) as resp:
                 status = resp.status
-    except Empty:
-        pytest.fail(f"no authoring line: {''.join(lines)}")
-    finally:
-        proc.send_signal(signal.SIGTERM)
-        proc.wait(timeout=60)
-        reader.join(timeout=60)
-        stdout.close()
     return lines, status
 
 

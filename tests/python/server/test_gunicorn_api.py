@@ -4,26 +4,20 @@ concurrent writes through several workers end in one whole library (the dataset 
 from __future__ import annotations
 
 import json
-import signal
-import subprocess
-import sys
 import threading
 import urllib.error
 import urllib.request
 from collections.abc import Iterator
 from pathlib import Path
-from queue import Empty, Queue
 from typing import Any
 
 import pytest
 
 from lanterna.manifests.validate import validate_manifest
 from tests.python.fixtures.presets import read_json, small_dataset, small_library
+from tests.python.fixtures.servers import lanterna_serve
 
-LANTERNA = Path(sys.executable).parent / "lanterna"
 TOKEN = "gunicorn-token-0123456789"
-#: Deadline for the server to print its first lines (not a performance bound).
-START_DEADLINE_S = 60
 
 
 @pytest.fixture(scope="module")
@@ -34,32 +28,9 @@ def served(tmp_path_factory: pytest.TempPathFactory) -> Iterator[tuple[str, Path
     small_dataset(root / "obj")
     token_file = scratch / "token"
     token_file.write_text(TOKEN + "\n")
-    proc = subprocess.Popen([str(LANTERNA), "serve", str(root), "--port", "0", "--workers", "2",
-                             "--authoring-token-file", str(token_file)],
-                            stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
-    assert proc.stdout is not None
-    stdout = proc.stdout
-    queue: Queue[str] = Queue()
-    reader = threading.Thread(target=lambda: [queue.put(line) for line in stdout], daemon=True)
-    reader.start()
-    lines: list[str] = []
-    while not any(line.startswith("Authoring API") for line in lines):
-        try:
-            lines.append(queue.get(timeout=START_DEADLINE_S))
-        except Empty:
-            proc.kill()
-            proc.wait()
-            reader.join()
-            stdout.close()
-            pytest.fail(f"server did not start: {''.join(lines)}")
-    url = lines[0].split(" at ", 1)[1].split("/ ", 1)[0]
-    try:
+    with lanterna_serve(root, "--workers", "2", "--authoring-token-file",
+                        str(token_file)) as (url, lines):
         yield url, root, "".join(lines)
-    finally:
-        proc.send_signal(signal.SIGTERM)
-        proc.wait(timeout=60)
-        reader.join(timeout=60)  # at the end of the output
-        stdout.close()
 
 
 def _request(method: str, url: str, body: Any = None,
