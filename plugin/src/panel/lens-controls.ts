@@ -7,7 +7,9 @@ import type { LanternaViewer } from '../api/viewer-api';
 import { ANNOTATION_DISPLAYS, type AnnotationDisplay } from '../lens/lens-state';
 import type { RenderMode } from '../render/modes';
 import { DEFAULT_RENDER_PARAMS } from '../render/params';
-import { labelled, layerOptions, modeOptions, mountSection, namedSelect, slider, type PanelSection } from './panel-dom';
+import {
+  labelled, layerOptions, modeOptions, mountSection, namedSelect, slider, titledSection, type PanelSection,
+} from './panel-dom';
 import { createParamSliders } from './param-sliders';
 
 /** The section's DOM. */
@@ -20,10 +22,7 @@ const DISPLAY_LABELS: Readonly<Record<AnnotationDisplay, string>> = {
 /** Build the lens section into `parent` for a ready viewer. */
 export function createLensControls(lanterna: LanternaViewer, parent: HTMLElement,
   onError: (error: unknown) => void = () => undefined): LensControls {
-  const section = document.createElement('fieldset');
-  section.className = 'lanterna-controls lanterna-lens-controls';
-  const legend = document.createElement('legend');
-  legend.textContent = 'Lens';
+  const section = titledSection('lanterna-lens-controls', 'Lens');
   const layers = lanterna.getLayers();
   const layerSelect = namedSelect('lens-layer', layerOptions(layers));
   const modeSelect = namedSelect('lens-mode');
@@ -45,7 +44,7 @@ export function createLensControls(lanterna: LanternaViewer, parent: HTMLElement
   const layerRow = labelled('Layer', layerSelect);
   layerRow.hidden = layers.length < 2;
   annotationsRow.hidden = !lanterna.manifest?.layers.some((l) => l.overlays.length > 0);
-  section.append(legend, layerRow, labelled('Mode', modeSelect), sliders.element, opacity.row, reset,
+  section.append(layerRow, labelled('Mode', modeSelect), sliders.element, opacity.row, reset,
     annotationsRow);
 
   let shownLayer = '';

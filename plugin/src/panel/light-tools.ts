@@ -4,14 +4,11 @@
  */
 import type { LanternaViewer } from '../api/viewer-api';
 import { formatLight, LIGHT_PRESETS } from './light-angles';
-import { mountSection, type PanelSection } from './panel-dom';
+import { mountSection, type PanelSection, titledSection } from './panel-dom';
 
 /** Build the light section into `parent`. */
 export function createLightTools(lanterna: LanternaViewer, parent: HTMLElement): PanelSection {
-  const section = document.createElement('fieldset');
-  section.className = 'lanterna-controls lanterna-light-tools';
-  const legend = document.createElement('legend');
-  legend.textContent = 'Light';
+  const section = titledSection('lanterna-light-tools', 'Light');
   const readout = document.createElement('output');
   readout.className = 'lanterna-light-readout';
   readout.setAttribute('aria-live', 'off');
@@ -27,7 +24,7 @@ export function createLightTools(lanterna: LanternaViewer, parent: HTMLElement):
     button.addEventListener('click', () => { lanterna.setLight(preset.light[0], preset.light[1]); });
     buttons.appendChild(button);
   }
-  section.append(legend, readout, buttons);
+  section.append(readout, buttons);
   const refresh = (): void => {
     const { lu, lv } = lanterna.getLight();
     readout.textContent = formatLight(lu, lv);

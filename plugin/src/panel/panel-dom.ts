@@ -12,6 +12,16 @@ export interface PanelSection {
   destroy(): void;
 }
 
+/** A panel section: a fieldset of class `lanterna-controls NAME` whose legend is `title`. */
+export function titledSection(name: string, title: string): HTMLFieldSetElement {
+  const section = document.createElement('fieldset');
+  section.className = `lanterna-controls ${name}`;
+  const legend = document.createElement('legend');
+  legend.textContent = title;
+  section.append(legend);
+  return section;
+}
+
 /** A `<label>` holding a caption and its control. */
 export function labelled(text: string, control: HTMLElement): HTMLLabelElement {
   const label = document.createElement('label');

@@ -8,7 +8,7 @@ import type { LanternaViewer } from '../api/viewer-api';
 import { addPreset, type PresetLibrary, type PresetTarget } from '../presets/library';
 import { createDatasetSave } from './dataset-save';
 import { removeEntry } from './library-edits';
-import { labelled, mountSection, namedSelect, type PanelSection } from './panel-dom';
+import { labelled, mountSection, namedSelect, type PanelSection, titledSection } from './panel-dom';
 import { acceptDroppedFiles, exportLibrary, importLibrary } from './preset-files';
 
 /** Options of {@link createPresetsPanel}. */
@@ -121,10 +121,7 @@ function saveForm(lanterna: LanternaViewer, onError: (error: unknown) => void,
 export function createPresetsPanel(lanterna: LanternaViewer, parent: HTMLElement,
   options: PresetsPanelOptions): PanelSection {
   const { onError } = options;
-  const section = document.createElement('fieldset');
-  section.className = 'lanterna-controls lanterna-presets';
-  const legend = document.createElement('legend');
-  legend.textContent = 'Presets';
+  const section = titledSection('lanterna-presets', 'Presets');
   const lists = document.createElement('div');
   lists.className = 'lanterna-preset-lists';
   const statusLine = document.createElement('output');
@@ -155,7 +152,7 @@ export function createPresetsPanel(lanterna: LanternaViewer, parent: HTMLElement
   files.className = 'lanterna-button-row';
   files.append(exportButton, importButton, file);
   const dataset = createDatasetSave(lanterna, options.manifestUrl, status);
-  section.append(legend, lists, saveForm(lanterna, onError, status), files, dataset.element, statusLine);
+  section.append(lists, saveForm(lanterna, onError, status), files, dataset.element, statusLine);
 
   let shown: PresetLibrary | null = null;
   const initial = lanterna.getPresetLibrary();
