@@ -6,12 +6,19 @@ VENV   := .venv
 PY     := $(VENV)/bin/python
 PORT   ?= 8000
 CHROMIUM := /usr/bin/chromium
+DEMO_TOKEN := .demo-token
 PLUGIN_SOURCES := $(shell find plugin/src plugin/*.html plugin/*.ts plugin/*.json -type f 2>/dev/null)
 
 .PHONY: demo test install build wheel lint typecheck typecheck-tree test-unit test-python browser-deps serve clean screenshot
 
-demo: install build ## make the demo dataset, serve it and print the URL
-	$(VENV)/bin/lanterna demo --root datasets --port $(PORT)
+demo: install build $(DEMO_TOKEN) ## make the demo dataset, serve it (authoring on) and print the URL
+	@echo "Authoring token of this demo (the viewer asks for it when you save presets or upload annotations): $$(cat $(DEMO_TOKEN))"
+	$(VENV)/bin/lanterna demo --root datasets --port $(PORT) --authoring-token-file $(DEMO_TOKEN)
+
+# The demo's authoring token: made once, private to you (the server reads it from this file, never
+# from the command line).
+$(DEMO_TOKEN):
+	umask 077 && $(PYTHON) -c 'import secrets; print(secrets.token_urlsafe(24))' > $@
 
 test: install build browser-deps lint typecheck test-unit test-python ## run every test
 
