@@ -19,6 +19,7 @@ import numpy.typing as npt
 import pyvips
 
 from lanterna.errors import LanternaInputError
+from lanterna.tiler.dataset.writer import read_description
 from lanterna.tiler.iiif import geometry as geo
 
 from . import geometry as og
@@ -72,6 +73,11 @@ def find_layer(desc: Mapping[str, Any], layer_id: str, where: Path) -> dict[str,
             return layer
     ids = ", ".join(layer["id"] for layer in layers)
     raise LanternaInputError(where, f"no layer {layer_id!r} (layers: {ids})")
+
+
+def published_layer(dataset: Path, layer_id: str) -> dict[str, Any]:
+    """The layer entry ``layer_id`` of the dataset's current ``lanterna.json``."""
+    return find_layer(read_description(Path(dataset)), layer_id, Path(dataset))
 
 
 def overlay_of(layer: Mapping[str, Any]) -> dict[str, Any]:

@@ -189,17 +189,20 @@ def building_pid(dataset: Path, layer: str) -> int | None:
 
 
 def store_error(dataset: Path, layer: str, message: str | None) -> None:
-    """Record (or, with None, clear) the last rebuild failure of ``layer``."""
+    """Record (or, with None, clear) the last rebuild failure of ``layer``, with the
+    fingerprint of the store it failed on."""
     folder = store.store_dir(dataset, layer)
     if message is None:
         (folder / store.LAST_ERROR).unlink(missing_ok=True)
     elif folder.is_dir():
-        store.put_file(folder, store.LAST_ERROR, (" ".join(message.split()) + "\n").encode())
+        doc = {"fingerprint": store.fingerprint(dataset, layer), "error": " ".join(message.split())}
+        store.put_file(folder, store.LAST_ERROR, json.dumps(doc).encode())
 
 
-def last_error(dataset: Path, layer: str) -> str | None:
-    """The last rebuild failure of ``layer``, if the last rebuild failed."""
+def last_error(dataset: Path, layer: str) -> tuple[str, str] | None:
+    """``(fingerprint, message)`` of the last rebuild failure of ``layer``, if it failed."""
     try:
-        return (store.store_dir(dataset, layer) / store.LAST_ERROR).read_text().strip() or None
-    except OSError:
+        doc = json.loads((store.store_dir(dataset, layer) / store.LAST_ERROR).read_text())
+        return str(doc["fingerprint"]), str(doc["error"])
+    except (OSError, ValueError, KeyError, TypeError):
         return None

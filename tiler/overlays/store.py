@@ -230,7 +230,10 @@ def check_image(image: npt.NDArray[np.uint8] | bytes, level: int, x: int, y: int
             read_header(image)
         except PngHeaderError as err:
             raise PatchError(source, str(err), too_large=err.too_large) from None
-        rgba, data = decode_rgba(image, source), image
+        try:
+            rgba, data = decode_rgba(image, source), image
+        except LanternaInputError as err:
+            raise PatchError(source, str(err).split(": ", 1)[-1]) from None
     else:
         if image.dtype != np.uint8 or image.ndim != 3 or image.shape[2] != 4:
             raise PatchError(source, f"expected an RGBA uint8 image (got {image.dtype} "
@@ -354,19 +357,27 @@ def level_texts(dataset: Path, layer: str) -> dict[str, dict[str, str]]:
             for e in overlay.get("levels", []) if isinstance(e, dict) and "level" in e}
 
 
-def set_level_texts(dataset: Path, layer: str, texts: Mapping[str, Mapping[str, str]]) -> None:
-    """Set the texts of some levels (``{"L": {"short", "long"}}``, others kept)."""
+def set_level_texts(dataset: Path, layer: str, texts: Mapping[str, Any]) -> None:
+    """Set the texts of some levels (``{"L": {"short", "long"}}``, others kept).
+
+    Raises :class:`PatchError` for texts that are not ``texts.schema.json`` or a level outside
+    the pyramid, before anything is stored.
+    """
     dataset = Path(dataset)
+    source = f"texts of layer {layer}"
+    try:
+        checked = check_document({str(k): v for k, v in texts.items()}, "texts", None)
+    except LanternaInputError as err:
+        raise PatchError(source, str(err)) from None
     canvas = layer_canvas(dataset, layer)
-    for key in texts:
-        if not str(key).isdigit() or int(key) > canvas.deepest:
-            raise PatchError(f"texts of layer {layer}", f"level {key} is not a level of the "
-                             f"pyramid (0–{canvas.deepest})")
+    for key in checked:
+        if int(key) > canvas.deepest:
+            raise PatchError(source, f"level {key} is not a level of the pyramid (0–"
+                             f"{canvas.deepest})")
     with store_lock(dataset):
         folder = ensure_store(dataset, layer)
         current = read_level_texts(folder / LEVEL_TEXTS)
-        for key, value in texts.items():
+        for key, value in checked.items():
             current[str(int(key))] = {"short": str(value.get("short", "")),
                                       "long": str(value.get("long", ""))}
-        check_document(current, "texts", folder / LEVEL_TEXTS)
         put_json(folder, LEVEL_TEXTS, dict(sorted(current.items(), key=lambda kv: int(kv[0]))))
