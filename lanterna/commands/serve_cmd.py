@@ -29,8 +29,9 @@ SERVE_EXAMPLES = """examples:
       gunicorn with 4 worker processes, for several users on the network (docs/deploy.md)
   lanterna serve datasets/ --max-size 4096     cap the output of the IIIF image server at /iiif/3/
   lanterna serve datasets/ --authoring-token-file ~/.lanterna-token
-      let the advanced viewer save presets into the datasets (PUT /api/…, docs/serving.md);
-      or set LANTERNA_AUTHORING_TOKEN in the environment. Never put the token on the command line.
+      let the advanced viewer save presets and annotations into the datasets (/api/…,
+      docs/serving.md); or set LANTERNA_AUTHORING_TOKEN in the environment. Never put the token
+      on the command line.
 
 Without --workers the server is Werkzeug's (one process, a thread per connection): right for one
 person on this machine, not for several users or a public address.
@@ -75,9 +76,9 @@ def _worker_args(p: argparse.ArgumentParser) -> None:
     p.add_argument("--max-area", type=float, default=None, metavar="MPX",
                    help="IIIF image server: largest output area in megapixels (default 16.8)")
     p.add_argument("--authoring-token-file", type=Path, default=None, metavar="FILE",
-                   help="enable the authoring API (saving presets): its token is the first line "
-                        "of FILE, at least 16 characters (default: $LANTERNA_AUTHORING_TOKEN, "
-                        "else read-only)")
+                   help="enable the authoring API (saving presets and annotations): its token is "
+                        "the first line of FILE, at least 16 characters (default: "
+                        "$LANTERNA_AUTHORING_TOKEN, else read-only)")
 
 
 def _limits(args: argparse.Namespace) -> dict[str, object]:
@@ -237,7 +238,7 @@ def _authoring_note(args: argparse.Namespace, token: object) -> str:
     if not token:
         return "Authoring API: off (read-only; --authoring-token-file FILE turns it on)"
     source = args.authoring_token_file or "$LANTERNA_AUTHORING_TOKEN"
-    return f"Authoring API: on (token from {source}); viewers can save presets"
+    return f"Authoring API: on (token from {source}); viewers can save presets and annotations"
 
 
 def _local_note(address: str) -> str:

@@ -16,7 +16,7 @@ It ships a preset library (:mod:`.presets`) and a pixel size of 0.05 mm (a scale
 
 from __future__ import annotations
 
-import tempfile
+import shutil
 from pathlib import Path
 
 import numpy as np
@@ -34,7 +34,10 @@ from lanterna.tiler.fit.hsh import fit_hsh
 from lanterna.tiler.fit.ptm import fit_ptm_lrgb
 from lanterna.tiler.formats.layouts import encode_normals
 from lanterna.tiler.iiif.pyramid import vips_from_array
-from lanterna.tiler.overlays.build import build_overlays
+from lanterna.tiler.overlays.composite import premultiply, resize_premultiplied, unpremultiply
+from lanterna.tiler.overlays.geometry import Patch, destination
+from lanterna.tiler.overlays.rebuild import rebuild_from_store
+from lanterna.tiler.overlays.store import add_patch, set_level_texts, store_dir, store_lock
 
 from .dome import demo_lights, render_stack
 from .presets import DEMO_PIXEL_MM, demo_presets
@@ -140,34 +143,66 @@ DEMO_TEXTS = {
 }
 
 
+#: Render states the demo's patches were "drawn under" (a patch's list entry restores its state).
+_RAKING = {"layer": "ptm", "mode": "color", "params": {"lightIntensity": 1.5},
+           "light": [-0.94, 0.18]}
+_SPECULAR = {"layer": "ptm", "mode": "specular",
+             "params": {"specKd": 0.3, "specKs": 1.0, "specExponent": 20}, "light": [0.2, 0.3]}
+_OVERHEAD = {"layer": "ptm", "mode": "color", "params": {}, "light": [0.0, 0.0]}
+DEMO_AUTHOR = "Lanterna demo"
+
+
 def _add_demo_overlays(out: Path, sketch: F32) -> None:
-    """Annotate the PTM layer at four levels (patches drawn here, built by the overlay builder)."""
+    """Annotate the PTM layer at four levels: five patches, each with its note and the render
+    state it was drawn under, put in the layer's patch store and built into its overlay pyramid.
+
+    Each patch is drawn at full resolution and reduced to its rectangle at its level as the
+    overlay builder reduces a larger patch (premultiplied, linear kernel), so the store holds it
+    at the size a browser drawing of it has.
+    """
     h, w = sketch.shape
     cyan, magenta, gold = (40, 220, 255), (255, 60, 200), (255, 200, 40)
-    with tempfile.TemporaryDirectory() as tmp:
-        def patch(level: int, box: tuple[int, int, int, int], order: int, info: str,
-                  draw: object) -> None:
-            x, y, bw, bh = box
-            img = Image.new("RGBA", (bw, bh), (0, 0, 0, 0))
-            draw(ImageDraw.Draw(img), bw, bh)  # type: ignore[operator]
-            img.save(Path(tmp) / f"{level}_{x}_{y}_{bw}_{bh}_{order}_{info}.png")
 
-        def outline(colour: tuple[int, int, int], width: int) -> object:
-            return lambda d, bw, bh: d.rounded_rectangle([width, width, bw - width, bh - width],
-                                                         radius=4 * width,
-                                                         outline=colour + (230,), width=width)
+    def outline(colour: tuple[int, int, int], width: int) -> object:
+        return lambda d, bw, bh: d.rounded_rectangle([width, width, bw - width, bh - width],
+                                                     radius=4 * width,
+                                                     outline=colour + (230,), width=width)
 
-        patch(3, (int(0.08 * w), int(0.08 * h), int(0.84 * w), int(0.84 * h)), 0, "tablet",
-              outline(cyan, 24))
-        patch(2, (int(0.14 * w), int(0.48 * h), int(0.72 * w), int(0.33 * h)), 0, "inscription",
-              outline(cyan, 12))
-        cx, cy, r = int(0.495 * w), int(0.33 * h), int(0.105 * w)
-        patch(2, (cx - int(1.3 * r), cy - int(1.3 * r), int(2.6 * r), int(2.6 * r)), 1, "inlay",
-              outline(gold, 12))
-        tint = np.zeros((h, w, 4), np.uint8)
-        tint[..., :3] = magenta
-        tint[..., 3] = np.rint(np.clip(sketch * 1.6, 0.0, 1.0) * 220).astype(np.uint8)
-        Image.fromarray(tint, "RGBA").save(Path(tmp) / f"1_0_0_{w}_{h}_0_underdrawing.png")
-        patch(0, (cx - r, cy - r, 2 * r, 2 * r), 0, "rosette",
-              lambda d, bw, bh: d.ellipse([6, 6, bw - 6, bh - 6], outline=gold + (240,), width=6))
-        build_overlays(out, "ptm", patches_dir=Path(tmp), texts=DEMO_TEXTS)
+    def drawn(box: tuple[int, int, int, int], draw: object) -> npt.NDArray[np.uint8]:
+        img = Image.new("RGBA", box[2:], (0, 0, 0, 0))
+        draw(ImageDraw.Draw(img), box[2], box[3])  # type: ignore[operator]
+        return np.asarray(img)
+
+    cx, cy, r = int(0.495 * w), int(0.33 * h), int(0.105 * w)
+    tint = np.zeros((h, w, 4), np.uint8)
+    tint[..., :3] = magenta
+    tint[..., 3] = np.rint(np.clip(sketch * 1.6, 0.0, 1.0) * 220).astype(np.uint8)
+    tablet = (int(0.08 * w), int(0.08 * h), int(0.84 * w), int(0.84 * h))
+    inscription = (int(0.14 * w), int(0.48 * h), int(0.72 * w), int(0.33 * h))
+    inlay = (cx - int(1.3 * r), cy - int(1.3 * r), int(2.6 * r), int(2.6 * r))
+    rosette = (cx - r, cy - r, 2 * r, 2 * r)
+    patches = [
+        (3, tablet, drawn(tablet, outline(cyan, 24)), _OVERHEAD, "Moulded frame",
+         "<p>The raised frame runs round all four sides; its inner edge is chipped at the "
+         "lower right.</p>"),
+        (2, inscription, drawn(inscription, outline(cyan, 12)), _RAKING, "Two-line inscription",
+         "<p>Read it under raking light from the left: the V-cut strokes cast shadows.</p>"),
+        (2, inlay, drawn(inlay, outline(gold, 12)), _SPECULAR, "Gold inlay",
+         "<p>Specular enhancement shows the leaf's burnishing marks.</p>"),
+        (1, (0, 0, w, h), tint, _OVERHEAD, "Underdrawing traced from the IR band",
+         "<p>Traced over the infrared band (the <i>IR band</i> layer, or the lens): ruling "
+         "lines, a compass circle and a draft signature.</p>"),
+        (0, rosette, drawn(rosette, lambda d, bw, bh: d.ellipse([6, 6, bw - 6, bh - 6],
+                                                                outline=gold + (240,), width=6)),
+         _SPECULAR, "Rosette", "<p>Eight petals and a central boss in gold leaf.</p>"),
+    ]
+    with store_lock(out):  # a rebuilt demo starts with only its own notes
+        shutil.rmtree(store_dir(out, "ptm"), ignore_errors=True)
+    for level, (x, y, bw, bh), rgba, state, short, long in patches:
+        x0, y0, x1, y1 = destination(Patch(level, x, y, bw, bh, 0, "", ""))
+        small = unpremultiply(resize_premultiplied(premultiply(rgba), x1 - x0, y1 - y0))
+        add_patch(out, "ptm", small, {"level": level, "x": x, "y": y, "w": bw, "h": bh,
+                                      "short": short, "long": long, "author": DEMO_AUTHOR,
+                                      "state": state})
+    set_level_texts(out, "ptm", DEMO_TEXTS)
+    rebuild_from_store(out, "ptm")
