@@ -37,7 +37,13 @@ from lanterna.tiler.iiif.pyramid import vips_from_array
 from lanterna.tiler.overlays.composite import premultiply, resize_premultiplied, unpremultiply
 from lanterna.tiler.overlays.geometry import Patch, destination
 from lanterna.tiler.overlays.rebuild import rebuild_from_store
-from lanterna.tiler.overlays.store import add_patch, set_level_texts, store_dir, store_lock
+from lanterna.tiler.overlays.store import (
+    add_patch,
+    layer_canvas,
+    set_level_texts,
+    store_dir,
+    store_lock,
+)
 
 from .dome import demo_lights, render_stack
 from .presets import DEMO_PIXEL_MM, demo_presets
@@ -198,11 +204,14 @@ def _add_demo_overlays(out: Path, sketch: F32) -> None:
     ]
     with store_lock(out):  # a rebuilt demo starts with only its own notes
         shutil.rmtree(store_dir(out, "ptm"), ignore_errors=True)
+    deepest = layer_canvas(out, "ptm").deepest  # a small demo has fewer levels
     for level, (x, y, bw, bh), rgba, state, short, long in patches:
+        if level > deepest:
+            continue
         x0, y0, x1, y1 = destination(Patch(level, x, y, bw, bh, 0, "", ""))
         small = unpremultiply(resize_premultiplied(premultiply(rgba), x1 - x0, y1 - y0))
         add_patch(out, "ptm", small, {"level": level, "x": x, "y": y, "w": bw, "h": bh,
                                       "short": short, "long": long, "author": DEMO_AUTHOR,
                                       "state": state})
-    set_level_texts(out, "ptm", DEMO_TEXTS)
+    set_level_texts(out, "ptm", {k: v for k, v in DEMO_TEXTS.items() if int(k) <= deepest})
     rebuild_from_store(out, "ptm")
