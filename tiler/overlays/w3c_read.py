@@ -17,10 +17,11 @@ through ``own_image``, a patch image the page names in the dataset itself).
   ``LanternaPatch`` service, as ``annotate export`` writes) keeps its level, and its pixels when
   ``own_image`` finds its PNG at the destination size.
 - **Texts**: ``short`` = the plain TextualBodies' values (purpose commenting, replying or none,
-  then tagging; not ``text/html``), joined with ``"; "``, at most 1000 characters; ``long`` = the
-  ``text/html`` or ``describing`` ones, joined by newlines; motivation ``tagging`` when every
-  short text is a tag, else ``commenting``. ``creator`` (a name, or ``name``/``nickname``/``id``
-  of an object) is the author; ``created`` is kept.
+  then tagging; not ``text/html``), joined with ``"; "``, at most 1000 characters; ``long`` =
+  the ``text/html`` or ``describing`` ones, joined by newlines, at most 100000; motivation
+  ``tagging`` when every short text is a tag, else ``commenting``. ``creator`` (a name, or
+  ``name``/``nickname``/``id`` of an object) is the author; ``created`` is read (the store
+  stamps its own).
 """
 
 from __future__ import annotations
@@ -43,7 +44,8 @@ from .shapes import Shape, ShapeError, bbox, parse_fragment, parse_svg, suggeste
 
 #: Finds the pixels of a patch image the page names by URL (a Lanterna export), or None.
 OwnImage = Callable[[str], "npt.NDArray[np.uint8] | None"]
-MAX_SHORT = 1000
+#: The store's limits of a patch's texts (tiler/schemas/patch.schema.json).
+MAX_SHORT, MAX_LONG = 1000, 100000
 
 
 @dataclass(frozen=True)
@@ -133,11 +135,13 @@ def _texts(bodies: list[dict[str, Any]], where: tuple[str | int, ...]) -> tuple[
             tags.append(body["value"].strip())
         else:  # commenting, replying, no purpose (or any other)
             plain.append(body["value"].strip())
-    short = "; ".join(plain + tags)
-    if len(short) > MAX_SHORT:
-        raise _AtPath(where, f"the short text (the plain TextualBodies) is {len(short)} "
-                      f"characters; at most {MAX_SHORT}")
-    return short, "\n".join(html), "tagging" if tags and not plain else "commenting"
+    short, long = "; ".join(plain + tags), "\n".join(html)
+    for what, text, most in (("short text (the plain", short, MAX_SHORT),
+                             ("long text (the HTML", long, MAX_LONG)):
+        if len(text) > most:
+            raise _AtPath(where, f"the {what} TextualBodies) is {len(text)} characters; at "
+                          f"most {most}")
+    return short, long, "tagging" if tags and not plain else "commenting"
 
 
 def _author(creator: Any) -> str:

@@ -109,6 +109,9 @@ def _broken(change: str) -> Any:
         items[0]["creator"] = {"name": "x" * 201}
     elif change == "short too long":
         items[2]["body"][0]["value"] = "y" * 1001
+    elif change == "long too long":  # each body within the schema, the two together not
+        items[2]["body"] += [{"type": "TextualBody", "format": "text/html",
+                              "value": "<p>" + "z" * 60000 + "</p>"}] * 2
     elif change == "too deep":
         items[1]["body"].append({"id": "https://x.org/p.png", "type": "Image",
                                  "service": [{"type": "LanternaPatch", "level": 7}]})
@@ -125,6 +128,7 @@ def _broken(change: str) -> Any:
     ("not svg", "items[0].target.selector.value", "not well-formed XML"),
     ("long author", "items[0].creator", "a creator"),
     ("short too long", "items[2].body", "at most 1000"),
+    ("long too long", "items[2].body", "long text (the HTML TextualBodies) is 120015"),
     ("too deep", "items[1].body", "level 7 is beyond the pyramid (levels 0–2)"),
     ("no items", "", 'needs "items"'),
 ])
