@@ -6,7 +6,9 @@ colour image) with two services: the ``ImageService3`` of that image and the lay
 ``LanternaRelight`` block, so any IIIF viewer shows the colour image and Lanterna relights it.
 Every image service embeds its image's description (size, tiles, sizes), so a viewer needs no
 ``info.json`` before the first tile (:mod:`lanterna.manifests.services`).
-Layers with an overlay add ``canvas.annotations`` (:mod:`lanterna.manifests.overlays`); the
+Layers with an overlay add ``canvas.annotations`` (:mod:`lanterna.manifests.overlays`), and
+layers with published patches a reference to their page of W3C annotations after them
+(:mod:`lanterna.manifests.annotation_page`); the
 preset library is a service on the Manifest and the pixel size a physdim service on the Canvas
 (:mod:`lanterna.manifests.extensions`).
 
@@ -32,6 +34,7 @@ from iiif_prezi3 import (
 
 from lanterna.errors import LanternaInputError
 
+from .annotation_page import page_references
 from .extensions import physdim_service, presets_service
 from .overlays import overlay_pages
 from .services import image_service, with_plane_descriptions
@@ -78,7 +81,7 @@ def build_manifest(desc: dict[str, Any],
                              body=Choice(items=bodies), target=canvas.id))
     canvas.add_item(page)
     doc: dict[str, Any] = json.loads(manifest.json(indent=2))
-    pages = overlay_pages(desc, infos)
+    pages = [*overlay_pages(desc, infos), *page_references(desc)]
     if pages:
         doc["items"][0]["annotations"] = pages
     presets, physdim = presets_service(desc, ds_url), physdim_service(desc, ds_url)

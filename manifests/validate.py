@@ -21,12 +21,12 @@ _MAX_MESSAGE = 160
 
 
 @cache
-def _manifest_validator() -> Draft7Validator:
+def _validator(cls: str) -> Draft7Validator:
     schema: dict[str, Any] = json.loads(SCHEMA_PATH.read_text())
     # The root is a oneOf (Manifest, Collection, AnnotationCollection or AnnotationPage), which
-    # reports one opaque error; checking the Manifest class through allOf reports each error.
+    # reports one opaque error; checking the one class through allOf reports each error.
     del schema["oneOf"]
-    schema["allOf"] = [{"$ref": "#/classes/manifest"}]
+    schema["allOf"] = [{"$ref": f"#/classes/{cls}"}]
     return Draft7Validator(schema)
 
 
@@ -44,7 +44,16 @@ def validate_manifest(doc: Any) -> list[str]:
     list of str
         One line per error, ``"<JSON path>: <message>"``; empty when the manifest is valid.
     """
-    errors = sorted(_manifest_validator().iter_errors(doc), key=lambda e: list(e.path))
+    return _errors(doc, "manifest")
+
+
+def validate_annotation_page(doc: Any) -> list[str]:
+    """Check ``doc`` against the schema's AnnotationPage class; as :func:`validate_manifest`."""
+    return _errors(doc, "annotationPage")
+
+
+def _errors(doc: Any, cls: str) -> list[str]:
+    errors = sorted(_validator(cls).iter_errors(doc), key=lambda e: list(e.path))
     lines: list[str] = []
     for err in errors:
         for leaf in _leaves(err):

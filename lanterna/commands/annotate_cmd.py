@@ -6,6 +6,7 @@ import argparse
 import sys
 from pathlib import Path
 
+from .annotate_w3c import register_w3c
 from .common import SubParsers, max_pixels_arg
 
 _BUILD = """\
@@ -63,9 +64,7 @@ def register(sub: SubParsers) -> None:
                              formatter_class=argparse.RawDescriptionHelpFormatter)
     lst.add_argument("dataset", type=Path, metavar="DATASET", help="dataset folder")
     lst.set_defaults(func=run_list)
-    # -- the W3C Web Annotation subcommands (export, import) are registered here: ----------
-    # from .annotate_w3c import register_w3c
-    # register_w3c(ann_sub)
+    register_w3c(ann_sub)  # the W3C Web Annotation actions: export, import
 
 
 def run_build(args: argparse.Namespace) -> int:

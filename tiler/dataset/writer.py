@@ -24,6 +24,7 @@ import numpy.typing as npt
 import pyvips
 
 from lanterna.errors import LanternaInputError
+from lanterna.manifests.annotation_page import annotation_documents
 from lanterna.manifests.build import build_manifest
 from lanterna.manifests.services import with_plane_descriptions
 from lanterna.tiler.iiif.encoding import TileFormat, tile_format
@@ -226,8 +227,9 @@ def check_pixel_size(mm: float | None) -> float | None:
 
 
 def write_documents(folder: Path, desc: dict[str, Any], out: Path) -> None:
-    """Write ``desc`` as ``layers/*.json``, ``lanterna.json``, ``manifest.json`` in folder, and
-    its preset library (``presets``) as ``presets.json`` (removed when there is none).
+    """Write ``desc`` as ``layers/*.json``, ``lanterna.json``, ``manifest.json`` in folder, its
+    preset library (``presets``) as ``presets.json`` (removed when there is none), and the W3C
+    annotations of the layers' published patches (:func:`write_annotations`).
 
     ``folder`` becomes the dataset ``out``: a number that is not finite is a one-line error
     naming the file in ``out`` (see :func:`~.output.json_text`). The manifest and the layer
@@ -247,6 +249,30 @@ def write_documents(folder: Path, desc: dict[str, Any], out: Path) -> None:
         (folder / "presets.json").unlink(missing_ok=True)
     _write_json(folder / "lanterna.json", desc, out / "lanterna.json")
     _write_json(folder / "manifest.json", build_manifest(desc, infos), out / "manifest.json")
+    write_annotations(folder, desc, out)
+
+
+def write_annotations(folder: Path, desc: dict[str, Any], out: Path) -> None:
+    """Write ``annotations/LAYER.json`` and ``annotations/LAYER/{id}.json`` for every layer with
+    published patches (:mod:`lanterna.manifests.annotation_page`); remove the stale ones.
+
+    Stale: a ``.json`` of ``annotations/`` that is not one of these documents, and the folder of
+    a layer that has no published patches (its patch images with it).
+    """
+    docs = annotation_documents(desc)
+    root = folder / "annotations"
+    if root.is_dir():
+        for path in sorted(root.rglob("*.json")):
+            if path.relative_to(folder).as_posix() not in docs:
+                path.unlink()
+        for sub in sorted(p for p in root.iterdir() if p.is_dir()):
+            if f"annotations/{sub.name}.json" not in docs:
+                shutil.rmtree(sub)
+    for rel, doc in docs.items():
+        (folder / rel).parent.mkdir(parents=True, exist_ok=True)
+        _write_json(folder / rel, doc, out / rel)
+    if root.is_dir() and not any(root.iterdir()):
+        root.rmdir()
 
 
 def image_infos(folder: Path, desc: dict[str, Any], out: Path) -> dict[str, dict[str, Any]]:

@@ -16,8 +16,8 @@ def _help(argv: list[str], capsys: pytest.CaptureFixture[str]) -> str:
     return capsys.readouterr().out
 
 
-@pytest.mark.parametrize("argv", [[c] for c in COMMANDS] + [["annotate", "build"],
-                                                           ["annotate", "list"]] +
+@pytest.mark.parametrize("argv", [[c] for c in COMMANDS] +
+                         [["annotate", a] for a in ("build", "list", "export", "import")] +
                          [["presets", a] for a in ("add", "list", "remove", "export", "import")],
                          ids=" ".join)
 def test_each_command_ends_with_its_own_examples(argv: list[str],

@@ -126,7 +126,9 @@ def test_manifest_has_one_supplementing_page_per_annotated_layer(built: Path) ->
     m = json.loads((built / "manifest.json").read_text())
     canvas = m["items"][0]
     assert canvas["items"][0]["items"][0]["body"]["type"] == "Choice"  # painting unchanged
-    (page,) = canvas["annotations"]
+    page, notes = canvas["annotations"]  # the level overlay, then the patches' W3C page
+    assert notes == {"id": f"{BASE}/obj/annotations/vis.json", "type": "AnnotationPage",
+                     "label": {"en": ["Notes: VIS"]}}
     assert page["id"] == f"{BASE}/obj/canvas/1/overlays/vis"
     assert page["type"] == "AnnotationPage" and page["label"] == {"en": ["Annotations: VIS"]}
     first, second = page["items"]
@@ -206,7 +208,7 @@ def test_replace_empties_the_store_and_old_images_go_a_build_later(tmp_path: Pat
     assert [(e["level"], e["image"], e["short"]) for e in levels] == [
         (1, "vis_ov1_b2", ""), (2, "vis_ov2_b2", "kept")]
     assert read_image(dataset, "vis_ov2_b2")[0, 0].tolist() == [0, 0, 255, 255]
-    assert sorted(p.name for p in (dataset / "annotations/vis").iterdir()) == [
+    assert sorted(p.name for p in (dataset / "annotations/vis").glob("*.png")) == [
         "1_0_0_20_20_0_c.png", "2_0_0_8_8_0_d.png"]
     # the previous build's images stay (unlisted) for one more version, then go
     assert (dataset / "iiif/vis_ov0/info.json").is_file()
