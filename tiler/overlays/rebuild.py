@@ -80,6 +80,7 @@ def rebuild_from_store(dataset: Path, layer: str, *, force: bool = False) -> Ove
         try:
             fingerprint = store.snapshot(dataset, layer, snap)
             if not force and fingerprint == published_fingerprint(entry):
+                store_error(dataset, layer, None)  # nothing to fail: an earlier failure is moot
                 overlay = overlay_of(entry)
                 return OverlayReport(layer, levels=sorted(previous_levels(entry)),
                                      patches=len(overlay.get("patches", [])),
