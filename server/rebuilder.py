@@ -106,6 +106,7 @@ class Rebuilder:
         try:
             for _ in range(MAX_ROUNDS):
                 if not rebuild.is_stale(dataset, layer):
+                    rebuild.store_error(dataset, layer, None)  # up to date: nothing failed
                     return False
                 report = rebuild.rebuild_from_store(dataset, layer)
                 if report.errors:
@@ -117,11 +118,20 @@ class Rebuilder:
             return True
         except LanternaInputError as err:
             log.error("rebuilding %s layer %s failed: %s", dataset.name, layer, err)
-            rebuild.store_error(dataset, layer, str(err))
+            rebuild.store_error(dataset, layer, _public(err, dataset))
         except Exception as err:  # never let the thread die: record and go on
             log.exception("rebuilding %s layer %s failed", dataset.name, layer)
             rebuild.store_error(dataset, layer, f"internal error ({type(err).__name__})")
         return False
+
+
+def _public(err: LanternaInputError, dataset: Path) -> str:
+    """The error's line with its file named relative to the data root (no server paths)."""
+    source = err.source or ""
+    for base in {str(dataset.parent), os.path.realpath(dataset.parent)}:
+        if source.startswith(base + os.sep):
+            source = source[len(base) + 1:]
+    return f"{source}: {err.problem}" if source else err.problem
 
 
 def status(rebuilder: Rebuilder, dataset: Path, layer: str) -> dict[str, Any]:

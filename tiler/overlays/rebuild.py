@@ -1,8 +1,8 @@
 """Rebuilding a layer's overlay pyramid from its patch store (docs/annotations.md "Rebuilds").
 
 :func:`rebuild_from_store` holds the dataset's write lock throughout; it takes the store's lock
-only to hard-link the store into a snapshot (a hidden temporary folder beside the dataset, swept
-by the next writer if this one is killed), composites the levels from the snapshot, and publishes
+only to hard-link the store into a snapshot (a hidden folder ``.snap-*`` of the store root, swept
+by the next rebuild if this one is killed), composites the levels from the snapshot, and publishes
 the next version atomically: the level pyramids under new ids (``{layer}_ov{L}_b{N}``), the
 snapshot's patch PNGs at ``annotations/LAYER/{id}.png``, and the overlay entry with its build
 number and the fingerprint of the store it was built from. A store unchanged since the published
@@ -16,6 +16,7 @@ import json
 import os
 import re
 import shutil
+import tempfile
 from collections.abc import Iterator
 from contextlib import contextmanager
 from pathlib import Path
@@ -24,7 +25,8 @@ from typing import Any
 import pyvips
 
 from lanterna.errors import LanternaInputError
-from lanterna.tiler.dataset.publish import new_temp, writing
+from lanterna.tiler.dataset.output import write_errors
+from lanterna.tiler.dataset.publish import writing
 from lanterna.tiler.dataset.writer import link_or_copy, read_description, rewriting
 from lanterna.tiler.iiif.pyramid import write_pyramid
 
@@ -74,10 +76,11 @@ def rebuild_from_store(dataset: Path, layer: str, *, force: bool = False) -> Ove
         desc = read_description(dataset)
         entry = find_layer(desc, layer, dataset)
         canvas = canvas_of(dataset, desc, entry)
-        snap = new_temp(dataset)
+        snap = _new_snapshot(dataset)
         try:
             fingerprint = store.snapshot(dataset, layer, snap)
             if not force and fingerprint == published_fingerprint(entry):
+                store_error(dataset, layer, None)  # nothing to fail: an earlier failure is moot
                 overlay = overlay_of(entry)
                 return OverlayReport(layer, levels=sorted(previous_levels(entry)),
                                      patches=len(overlay.get("patches", [])),
@@ -89,6 +92,19 @@ def rebuild_from_store(dataset: Path, layer: str, *, force: bool = False) -> Ove
             return report
         finally:
             shutil.rmtree(snap, ignore_errors=True)
+
+
+def _new_snapshot(dataset: Path) -> Path:
+    """Make an empty snapshot folder ``.snap-*`` in the dataset's store root (the same file
+    system as the store, for hard links); remove those of killed rebuilds (we hold the dataset's
+    lock, which every rebuild holds while its snapshot exists)."""
+    root = store.store_root(dataset)
+    with write_errors(dataset):
+        root.mkdir(exist_ok=True)
+        for entry in os.scandir(root):
+            if entry.name.startswith(".snap-") and entry.is_dir(follow_symlinks=False):
+                shutil.rmtree(root / entry.name, ignore_errors=True)
+        return Path(tempfile.mkdtemp(prefix=".snap-", dir=root))
 
 
 def _publish(dataset: Path, entry: dict[str, Any], canvas: Canvas, snap: Path,

@@ -129,6 +129,9 @@ def ensure_store(dataset: Path, layer: str) -> Path:
         return folder
     root = store_root(dataset)
     root.mkdir(exist_ok=True)
+    for entry in os.scandir(root):  # a killed initialisation's (we hold the lock)
+        if entry.name.startswith(".init-") and entry.is_dir(follow_symlinks=False):
+            shutil.rmtree(root / entry.name, ignore_errors=True)
     tmp = root / f".init-{layer}-{secrets.token_hex(4)}"
     tmp.mkdir()
     try:

@@ -165,3 +165,22 @@ def test_a_rebuild_killed_midway_leaves_the_old_overlay_and_the_next_one_complet
     assert report.changed and report.patches == len(store.list_patches(dataset, "vis"))
     assert not rebuild.is_stale(dataset, "vis")
     assert leftovers(dataset.parent) == ["big", "big.annotations"]
+
+
+def test_gimp_levels_replace_earlier_level_patches_and_keep_the_others(
+        dataset: Path, tmp_path: Path) -> None:
+    drawn = add(dataset, 0, (255, 0, 0))
+    first, second = tmp_path / "g1", tmp_path / "g2"
+    first.mkdir()
+    second.mkdir()
+    png(first / "level_2.png", np.full((100, 150, 4), (0, 200, 0, 255), np.uint8))
+    png(second / "level_1.png", np.full((200, 300, 4), (0, 0, 200, 255), np.uint8))
+    assert main(["annotate", "build", str(dataset), "--layer", "vis", "--gimp", str(first)]) == 0
+    assert main(["annotate", "build", str(dataset), "--layer", "vis", "--gimp", str(second)]) == 0
+    ids = [r["id"] for r in store.list_patches(dataset, "vis")]
+    assert ids == [drawn["id"], "1_0_0_600_400_0_level"]  # level 2's GIMP image went
+    assert [e["level"] for e in overlay(dataset)["levels"]] == [0, 1]
+    assert main(["annotate", "build", str(dataset), "--layer", "vis", "--replace", "--gimp",
+                 str(first)]) == 0
+    assert [r["id"] for r in store.list_patches(dataset, "vis")] == ["2_0_0_600_400_0_level"]
+    assert [e["level"] for e in overlay(dataset)["levels"]] == [2]

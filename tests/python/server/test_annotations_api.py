@@ -229,3 +229,22 @@ def test_background_rebuilds_end_done_with_every_patch(root: Path) -> None:
     assert status["served"]["fingerprint"] == store.fingerprint(root / "obj", "vis")
     desc = json.loads((root / "obj/lanterna.json").read_text())
     assert len(desc["layers"][0]["overlay"]["patches"]) == 5
+
+
+def test_a_failed_rebuild_is_reported_and_not_retried_until_the_store_changes(
+        tmp_path: Path) -> None:
+    root = tmp_path / "clash"
+    make_dataset(root, layers=("vis", "vis_ov0"))  # layer vis_ov0's image has the id of vis's
+    c = client(root)
+    resp = c.post(f"{URL}/patches", headers=AUTH, **upload(META, square(10, (255, 0, 0))))
+    assert resp.status_code == 201  # stored; its rebuild fails
+    status = resp.get_json()["status"]
+    assert status["state"] == "done" and status["served"]["build"] == 0
+    assert status["error"] == ("obj: image id(s) vis_ov0 already used by something other than "
+                               "this layer's overlay")  # named within the data root
+    marker = root / "obj.annotations/vis/.error"
+    stamp = marker.stat().st_mtime_ns
+    assert c.get(f"{URL}/status").get_json() == status
+    assert marker.stat().st_mtime_ns == stamp  # not tried again on the same store
+    resp = c.delete(f"{URL}/patches/{resp.get_json()['patch']['id']}", headers=AUTH)
+    assert resp.get_json()["status"]["error"] is None and not marker.exists()
