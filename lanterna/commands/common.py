@@ -4,6 +4,9 @@ from __future__ import annotations
 
 import argparse
 import math
+import sys
+from collections.abc import Iterator
+from contextlib import contextmanager
 from pathlib import Path
 from typing import TypeAlias
 
@@ -77,3 +80,23 @@ def _port(text: str) -> int:
     if not 0 <= port <= 65535:
         raise argparse.ArgumentTypeError(f"not a port number (0-65535): {text!r}")
     return port
+
+
+@contextmanager
+def annotations_set_aside(out: Path, force: bool) -> Iterator[None]:
+    """Around a ``--force`` write over an existing dataset: its patch store (its annotations,
+    which belong to the object it was) is moved aside first, put back if the write fails, and
+    the user is told where it went (docs/annotations.md, "The patch store")."""
+    from lanterna.tiler.overlays.store_files import restore_store, retire_store, store_root
+
+    aside = retire_store(out) if force and (Path(out) / "lanterna.json").is_file() else None
+    try:
+        yield
+    except BaseException:
+        if aside is not None:
+            restore_store(out, aside)
+        raise
+    if aside is not None:
+        print(f"lanterna: warning: the replaced dataset's annotations were moved to {aside}; if "
+              f"it is the same object, move them back: mv {aside} {store_root(out)}",
+              file=sys.stderr)

@@ -11,7 +11,7 @@ from lanterna.errors import LanternaInputError
 if TYPE_CHECKING:
     from lanterna.tiler.fit.run import ImageSet
 
-from .common import SubParsers, check_tile_size, dataset_args
+from .common import SubParsers, annotations_set_aside, check_tile_size, dataset_args
 from .summary import print_written
 
 FIT_EXAMPLES = """examples:
@@ -96,11 +96,12 @@ def run(args: argparse.Namespace) -> int:
     check_tile_size(args.tile_size)
     plane_format = parse_plane_format(args.plane_format)
     fusions = [tuple(part.strip() for part in f.split(",")) for f in args.fusion]
-    fit_sets(_sets(args), args.model, args.output, fusions=fusions,
-             terms=args.terms, name=args.name, label=args.label, base_url=args.base_url,
-             tile_size=args.tile_size, force=args.force, band_rows=args.band_rows,
-             tiff=args.tiff, scratch=args.scratch, fit_space=args.fit_space,
-             scheduler=args.scheduler, plane_format=plane_format, report=print,
-             progress=None if args.quiet else Progress, pixel_size_mm=args.pixel_size)
+    with annotations_set_aside(args.output, args.force):
+        fit_sets(_sets(args), args.model, args.output, fusions=fusions,
+                 terms=args.terms, name=args.name, label=args.label, base_url=args.base_url,
+                 tile_size=args.tile_size, force=args.force, band_rows=args.band_rows,
+                 tiff=args.tiff, scratch=args.scratch, fit_space=args.fit_space,
+                 scheduler=args.scheduler, plane_format=plane_format, report=print,
+                 progress=None if args.quiet else Progress, pixel_size_mm=args.pixel_size)
     print_written(args.output)
     return 0

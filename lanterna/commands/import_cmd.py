@@ -7,7 +7,7 @@ from pathlib import Path
 
 from lanterna.errors import LanternaInputError
 
-from .common import SubParsers, check_tile_size, dataset_args
+from .common import SubParsers, annotations_set_aside, check_tile_size, dataset_args
 from .summary import print_written
 
 IMPORT_EXAMPLES = """examples:
@@ -60,9 +60,10 @@ def run(args: argparse.Namespace) -> int:
     fusions = [tuple(part.strip() for part in f.split(",")) for f in args.fusion]
     if not args.sources and not bands:
         raise LanternaInputError(None, "nothing to import: give a SOURCE or --band NAME=FILE")
-    out = import_sources(args.sources, args.output, name=args.name, label=args.label,
-                         bands=bands, fusions=fusions, base_url=args.base_url,
-                         tile_size=args.tile_size, force=args.force, tiff=args.tiff,
-                         plane_format=plane_format, pixel_size_mm=args.pixel_size)
+    with annotations_set_aside(args.output, args.force):
+        out = import_sources(args.sources, args.output, name=args.name, label=args.label,
+                             bands=bands, fusions=fusions, base_url=args.base_url,
+                             tile_size=args.tile_size, force=args.force, tiff=args.tiff,
+                             plane_format=plane_format, pixel_size_mm=args.pixel_size)
     print_written(out)
     return 0

@@ -122,3 +122,28 @@ def encode_png(rgba: npt.NDArray[np.uint8]) -> bytes:
     img = pyvips.Image.new_from_array(np.ascontiguousarray(rgba)).copy(interpretation="srgb")
     data: bytes = img.pngsave_buffer(compression=6)
     return data
+
+
+def retire_store(dataset: Path) -> Path | None:
+    """Move ``dataset``'s patch store aside (``NAME.annotations.replaced-STAMP``); return where.
+
+    For a dataset about to be replaced (``--force``): its annotations belong to the object it
+    was, and must not be composited over a new one without anyone asking. None if it has no
+    store. Undone by :func:`restore_store` if the replacement fails.
+    """
+    root = store_root(dataset)
+    with store_lock(dataset):
+        if not root.is_dir():
+            return None
+        stamp = datetime.now(UTC).strftime("%Y%m%dT%H%M%S")
+        aside = root.with_name(f"{root.name}.replaced-{stamp}-{os.getpid()}")
+        os.rename(root, aside)
+    return aside
+
+
+def restore_store(dataset: Path, aside: Path) -> None:
+    """Put a store :func:`retire_store` moved aside back, unless a new one exists meanwhile."""
+    root = store_root(dataset)
+    with store_lock(dataset):
+        if not os.path.lexists(root):
+            os.rename(aside, root)

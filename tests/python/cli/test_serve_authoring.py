@@ -45,7 +45,7 @@ def test_without_a_token_authoring_is_off(root: Path) -> None:
 def test_the_environment_token_turns_authoring_on(root: Path) -> None:
     lines, status = _startup(root, {"LANTERNA_AUTHORING_TOKEN": TOKEN}, put=small_library())
     assert lines[-1] == ("Authoring API: on (token from $LANTERNA_AUTHORING_TOKEN); viewers can "
-                         "save presets\n")
+                         "save presets and annotations\n")
     assert not any(TOKEN in line for line in lines)
     assert status == 200 and read_json(root / "obj" / "presets.json") == small_library()
 
