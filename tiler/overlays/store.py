@@ -262,13 +262,14 @@ def _texts_and_state(meta: Mapping[str, Any], record: dict[str, Any], source: st
 
 # -- changes ----------------------------------------------------------------------------------
 def add_patch(dataset: Path, layer: str, image: npt.NDArray[np.uint8] | bytes,
-              meta: Mapping[str, Any]) -> dict[str, Any]:
+              meta: Mapping[str, Any], *, created: str | None = None) -> dict[str, Any]:
     """Add a patch on top of the layer's others; return its stored record.
 
     ``meta`` holds ``level, x, y, w, h`` (full-resolution rectangle) and optionally ``short,
     long, motivation, author, state``; ``image`` is RGBA (an array, or PNG bytes) exactly the
     rectangle's size at its level. Its order is 1 + the largest of the layer's (0 for the first),
     its ``INFO`` a slug of the short text. Every check is made before anything is stored.
+    ``created`` (ISO-8601) keeps an imported annotation's own creation time; default now.
     """
     dataset = Path(dataset)
     source = f"patch of layer {layer}"
@@ -282,7 +283,8 @@ def add_patch(dataset: Path, layer: str, image: npt.NDArray[np.uint8] | bytes,
     stamp = now_iso()
     record: dict[str, Any] = {"type": "LanternaPatch", "version": 1, "id": "", "layer": layer,
                               "level": level, "x": x, "y": y, "w": w, "h": h, "order": 0,
-                              "info": "", "author": "", "created": stamp, "modified": stamp,
+                              "info": "", "author": "", "created": created or stamp,
+                              "modified": stamp,
                               "short": "", "long": "", "motivation": "commenting",
                               "state": None}
     _texts_and_state(meta, record, source)

@@ -75,7 +75,7 @@ def import_page(dataset: Path, layer_id: str, page: Path) -> ImportReport:
         x, y, w, h = patch.rect
         meta = {"level": patch.level, "x": x, "y": y, "w": w, "h": h, "short": patch.short,
                 "long": patch.long, "motivation": patch.motivation, "author": patch.author}
-        report.records.append(add_patch(dataset, layer_id, patch.rgba, meta))
+        report.records.append(add_patch(dataset, layer_id, patch.rgba, meta, created=patch.created))
     report.rebuild = rebuild_from_store(dataset, layer_id)
     return report
 

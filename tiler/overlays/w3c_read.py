@@ -20,8 +20,8 @@ through ``own_image``, a patch image the page names in the dataset itself).
   then tagging; not ``text/html``), joined with ``"; "``, at most 1000 characters; ``long`` =
   the ``text/html`` or ``describing`` ones, joined by newlines, at most 100000; motivation
   ``tagging`` when every short text is a tag, else ``commenting``. ``creator`` (a name, or
-  ``name``/``nickname``/``id`` of an object) is the author; ``created`` is read (the store
-  stamps its own).
+  ``name``/``nickname``/``id`` of an object) is the author; ``created`` is kept (else the
+  store stamps the time of the import).
 """
 
 from __future__ import annotations
