@@ -84,3 +84,10 @@ export { mountViewTools, type ViewTools, type ViewToolsOptions } from './tools/v
 export { attachUrlState, type UrlStateOptions } from './tools/url-state';
 export { createHelpOverlay, type HelpOverlay } from './tools/help-overlay';
 export { createScaleBar, type ScaleBarWidget } from './tools/scale-bar';
+export { createAnnotator, MAX_PIXELS, MAX_SIDE, type Annotator, type AnnotatorOptions } from './annotate/annotator';
+export { patchFrame, destination, frameImageRect, type PatchFrame } from './annotate/patch-frame';
+export { infoSlug, patchFileName, nextOrder } from './annotate/patch-name';
+export { StrokeHistory, type Operation, type Stroke, type StrokePoint, type StrokeTool } from './annotate/stroke-history';
+export { brushWidth } from './annotate/pen-width';
+export { parseStatus, waitForBuild, type BuildStatus } from './annotate/build-status';
+export { AuthoringRequestError, type PatchMeta } from './annotate/patch-upload';
