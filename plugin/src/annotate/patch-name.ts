@@ -8,11 +8,16 @@ import type { PatchFrame } from './patch-frame';
 /** Longest INFO slug. */
 export const SLUG_MAX = 40;
 
-/** The INFO slug of a short text: accents dropped, other characters runs → `-`, trimmed, ≤ 40 chars. */
+/**
+ * The INFO slug of a short text, as the server makes it (`tiler/overlays/store.py` `slug`): other
+ * than ASCII dropped, every run of characters other than letters, digits and `-` → `-`, dashes
+ * trimmed at both ends, cut to 40 characters (and trimmed again).
+ */
 export function infoSlug(text: string): string {
-  const ascii = text.normalize('NFKD').replace(/[\u0300-\u036f]/g, '');
-  const slug = ascii.replace(/[^A-Za-z0-9]+/g, '-').replace(/^-+/, '').slice(0, SLUG_MAX).replace(/-+$/, '');
-  return slug || 'patch';
+  const trim = (t: string): string => t.replace(/^-+|-+$/g, '');
+  // eslint-disable-next-line no-control-regex -- every character outside ASCII
+  const ascii = text.replace(/[^\u0000-\u007f]/g, '');
+  return trim(trim(ascii.replace(/[^A-Za-z0-9-]+/g, '-')).slice(0, SLUG_MAX)) || 'patch';
 }
 
 /** The patch's file name: `L_X_Y_W_H_O_INFO.png`. */

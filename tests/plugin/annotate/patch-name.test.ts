@@ -2,9 +2,11 @@ import { describe, expect, it } from 'vitest';
 import { infoSlug, nextOrder, patchFileName, SLUG_MAX } from '../../../plugin/src/annotate/patch-name';
 
 describe('infoSlug', () => {
-  it('keeps ASCII letters, digits and single dashes', () => {
+  it('keeps ASCII letters, digits and dashes, as the server does', () => {
     expect(infoSlug('Crack, upper left!')).toBe('Crack-upper-left');
-    expect(infoSlug('  --Retouche à l\'encre  ')).toBe('Retouche-a-l-encre');
+    // other than ASCII is dropped, not transliterated; a dash is kept beside the run it ends
+    expect(infoSlug('  --Retouche à l\'encre  ')).toBe('Retouche-l-encre');
+    expect(infoSlug('a - b')).toBe('a---b');
     expect(infoSlug('Λ 12_b')).toBe('12-b');
   });
 
