@@ -69,7 +69,9 @@ export function createAnnotator(lanterna: Viewer, options: AnnotatorOptions): An
   let mouseNav = true;
   const builds = new Map<string, number>();
   const layer = (): string => lanterna.getActiveLayer();
-  const endpoints = (): ReturnType<typeof layerUrls> | null => (urls ? layerUrls(urls, layer()) : null);
+  /** The layer the patch is drawn for: the active one when it was started (the layer may be switched meanwhile). */
+  let patchLayer = '';
+  const endpoints = (id = layer()): ReturnType<typeof layerUrls> | null => (urls ? layerUrls(urls, id) : null);
 
   const toolbox = createToolbox((token) => { void upload(token); });
   (options.container ?? lanterna.viewer.element.parentElement ?? document.body).appendChild(toolbox.element);
@@ -91,7 +93,7 @@ export function createAnnotator(lanterna: Viewer, options: AnnotatorOptions): An
   };
 
   const knownOrders = async (): Promise<void> => {
-    const where = endpoints();
+    const where = endpoints(patchLayer);
     if (!where) {
       return;
     }
@@ -136,12 +138,14 @@ export function createAnnotator(lanterna: Viewer, options: AnnotatorOptions): An
       throw new LanternaError(`This view makes a ${frame.width}×${frame.height} px patch, larger than the server `
         + `takes (${MAX_SIDE} px a side): zoom in.`);
     }
+    patchLayer = layer();
     surface = createDrawSurface(lanterna, frame, () => toolbox.brush(), notify);
     uploaded = false;
     mouseNav = lanterna.viewer.isMouseNavEnabled();
     lanterna.viewer.setMouseNavEnabled(false);
     document.addEventListener('keydown', onKey, true);
-    toolbox.setTitle(`Annotate: level ${frame.level}, ${frame.w}×${frame.h} px at ${frame.x}, ${frame.y}`);
+    const label = lanterna.manifest?.layers.find((l) => l.id === patchLayer)?.label ?? patchLayer;
+    toolbox.setTitle(`Annotate ${label}: level ${frame.level}, ${frame.w}×${frame.h} px at ${frame.x}, ${frame.y}`);
     toolbox.setStatus(`Draw on the ${frame.width}×${frame.height} px patch.`);
     toolbox.element.hidden = false;
     void knownOrders();
@@ -179,7 +183,7 @@ export function createAnnotator(lanterna: Viewer, options: AnnotatorOptions): An
 
   const sleep = (ms: number) => () => new Promise<void>((r) => { setTimeout(r, ms); });
   const upload = async (token: string): Promise<void> => {
-    const where = endpoints();
+    const where = endpoints(patchLayer);
     const current = surface;
     if (!where || !current || busy) {
       return;
@@ -211,7 +215,7 @@ export function createAnnotator(lanterna: Viewer, options: AnnotatorOptions): An
         onStatus: (s) => { if (s.state !== 'done') { toolbox.setStatus(`Uploaded ${id}: the overlay is ${s.state}…`); } },
       });
       if (done) {
-        builds.set(layer(), done.build);
+        builds.set(patchLayer, done.build);
         await refresh();
         toolbox.setStatus(`Uploaded ${id}: build ${done.build} of the overlay is shown.`);
       }

@@ -27,7 +27,14 @@ from PIL import Image
 from lanterna.tiler.dataset.layers import add_ptm_layer
 from lanterna.tiler.dataset.plane_format import parse_plane_format
 from lanterna.tiler.dataset.writer import DatasetWriter
-from tests.python.fixtures.page_script import FRAME, READY, evaluate, frame, run_page
+from tests.python.fixtures.page_script import (
+    FRAME,
+    NO_AUTHORING,
+    READY,
+    evaluate,
+    frame,
+    run_page,
+)
 from tests.python.fixtures.ptm import random_ptm_of_size
 from tests.python.fixtures.servers import lanterna_serve
 
@@ -243,3 +250,16 @@ def test_strokes_undo_redo_download_and_upload_give_the_served_overlay(
     assert changed[oy + 175, ox + 450], "the middle of the mouse stroke"
     assert changed[oy + PEN_Y[1], ox + 470], "the hard pen stroke"
     assert not changed[:, ox + 700:].any(), "nothing drawn right of the strokes"
+
+
+def test_without_authoring_there_is_no_annotate_button_and_no_status_reads(
+        served: tuple[str, Path], tmp_path: Path) -> None:
+    url, _ = served
+    steps: list[dict[str, Any]] = [
+        READY,
+        {"waitFor": "() => document.getElementById('annotate').dataset.checked === 'true'"},
+        evaluate("() => document.getElementById('annotate').hidden"),
+    ]
+    found = run_page(page(url), steps, tmp_path, VIEW, routes=(NO_AUTHORING,), record=r"/api/")
+    assert found["values"][-1] is True
+    assert [r["url"] for r in found["requests"]] == [f"{url}/api/"]
