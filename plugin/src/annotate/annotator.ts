@@ -190,8 +190,10 @@ export function createAnnotator(lanterna: Viewer, options: AnnotatorOptions): An
     }
     busy = true;
     sync();
+    current.setEnabled(false);
     const t = toolbox.texts();
     const forPatch = t.textsFor === 'patch';
+    let posted = false;
     try {
       const before = await readStatus(where).then((s) => s.build, () => -1);
       const state = lanterna.getState();
@@ -201,15 +203,14 @@ export function createAnnotator(lanterna: Viewer, options: AnnotatorOptions): An
       });
       toolbox.setStatus('Uploading…');
       const id = await postPatch(where, token, meta, await canvasPng(current.canvas));
+      posted = true;
+      uploaded = true;
       storeToken(token);
       toolbox.token.hide();
       if (!forPatch && (t.short || t.long)) {
         await putLevelTexts(where, token, current.frame.level, t.short, t.long);
       }
       toolbox.setStatus(`Uploaded ${id}: rebuilding the overlay…`);
-      current.reset();
-      uploaded = true;
-      sync();
       const done = await waitForBuild(before, {
         read: () => readStatus(where), sleep: sleep(options.pollMs ?? 1000), cancelled: () => destroyed,
         onStatus: (s) => { if (s.state !== 'done') { toolbox.setStatus(`Uploaded ${id}: the overlay is ${s.state}…`); } },
@@ -227,6 +228,10 @@ export function createAnnotator(lanterna: Viewer, options: AnnotatorOptions): An
       toolbox.setStatus(error instanceof Error ? error.message : String(error), false);
     } finally {
       busy = false;
+      current.setEnabled(true);
+      if (posted) {
+        current.reset(); // the drawing is in the store now (and in the overlay once rebuilt)
+      }
       sync();
     }
   };

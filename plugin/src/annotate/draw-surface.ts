@@ -32,6 +32,8 @@ export interface DrawSurface {
   clear(): void;
   /** Forget the drawing (after an upload). */
   reset(): void;
+  /** Take strokes or not (not while an upload is under way). */
+  setEnabled(enabled: boolean): void;
   destroy(): void;
 }
 
@@ -57,6 +59,7 @@ export function createDrawSurface(lanterna: Pick<LanternaViewer, 'viewer' | 'get
   const renderer = new StrokeRenderer(frame.width, frame.height);
   const history = new StrokeHistory();
   let rect: Rect = [0, 0, 1, 1];
+  let enabled = true;
 
   const place = (): void => {
     const view = lanterna.getState().view;
@@ -86,7 +89,7 @@ export function createDrawSurface(lanterna: Pick<LanternaViewer, 'viewer' | 'get
     }
   };
   const onDown = (e: PointerEvent): void => {
-    if (active || (e.pointerType === 'mouse' && e.button !== 0)) {
+    if (!enabled || active || (e.pointerType === 'mouse' && e.button !== 0)) {
       return;
     }
     e.preventDefault();
@@ -143,6 +146,10 @@ export function createDrawSurface(lanterna: Pick<LanternaViewer, 'viewer' | 'get
     redo: () => { act(() => history.redo()); },
     clear: () => { act(() => history.push({ kind: 'clear' })); },
     reset: () => { act(() => { history.reset(); }); },
+    setEnabled(on) {
+      enabled = on;
+      canvas.style.cursor = on ? 'crosshair' : 'progress';
+    },
     destroy() {
       for (const name of events) {
         lanterna.viewer.removeHandler(name, place);
