@@ -1,6 +1,7 @@
 """The authoring API: ``/api/`` and a dataset's preset library (docs/serving.md).
 
-- ``GET /api/`` → ``{"authoring": true|false}`` (whether writes are possible);
+- ``GET /api/`` → ``{"authoring": true|false, "annotations": true}`` (whether writes are
+  possible; the annotation routes are :mod:`.annotations_api`'s);
 - ``GET /api/datasets/<name>/presets`` → the dataset's preset library (an empty one if none);
 - ``PUT /api/datasets/<name>/presets`` with ``Authorization: Bearer TOKEN`` and a library as
   the JSON body → ``{"presets": N}`` once the dataset (``lanterna.json``, ``presets.json``,
@@ -52,30 +53,19 @@ def json_error(status: int, message: str, **headers: str) -> Response:
     return resp
 
 
-def _json(doc: Any, status: int = 200) -> Response:
+def json_response(doc: Any, status: int = 200) -> Response:
+    """A JSON document, never cached."""
     resp = Response(json.dumps(doc) + "\n", status=status, mimetype="application/json")
     resp.cache_control.no_store = True
     return resp
 
 
-@api.get("/")
-def index() -> Response:
-    return _json({"authoring": bool(current_app.config["AUTHORING_TOKEN"])})
+def refuse_write() -> Response | None:
+    """The error response for a write this request may not make, or None if it may.
 
-
-@api.get("/datasets/<name>/presets")
-def get_presets(name: str) -> Response:
-    dataset = _dataset(name)
-    if dataset is None:
-        return json_error(404, f"no dataset {name!r}")
-    try:
-        return _json(dataset_library(dataset))
-    except LanternaInputError as err:
-        return json_error(500, str(err))
-
-
-@api.put("/datasets/<name>/presets")
-def put_presets(name: str) -> Response:
+    403 when no token is configured or the ``Origin`` is not this server's; 401 (with
+    ``WWW-Authenticate: Bearer``) when the token is missing or wrong. Nothing of the body is read.
+    """
     token = current_app.config["AUTHORING_TOKEN"]
     if not token:
         return json_error(403, "authoring is off: this server has no authoring token "
@@ -87,7 +77,32 @@ def put_presets(name: str) -> Response:
     if not bearer_matches(request.headers.get("Authorization"), token):
         return json_error(401, "a valid authoring token is needed (Authorization: Bearer "
                           "TOKEN)", **{"WWW-Authenticate": 'Bearer realm="lanterna"'})
-    dataset = _dataset(name)
+    return None
+
+
+@api.get("/")
+def index() -> Response:
+    return json_response({"authoring": bool(current_app.config["AUTHORING_TOKEN"]),
+                          "annotations": True})
+
+
+@api.get("/datasets/<name>/presets")
+def get_presets(name: str) -> Response:
+    dataset = dataset_path(name)
+    if dataset is None:
+        return json_error(404, f"no dataset {name!r}")
+    try:
+        return json_response(dataset_library(dataset))
+    except LanternaInputError as err:
+        return json_error(500, str(err))
+
+
+@api.put("/datasets/<name>/presets")
+def put_presets(name: str) -> Response:
+    refused = refuse_write()
+    if refused is not None:
+        return refused
+    dataset = dataset_path(name)
     if dataset is None:
         return json_error(404, f"no dataset {name!r}")
     if request.content_length is not None and request.content_length > MAX_BODY:
@@ -108,10 +123,10 @@ def put_presets(name: str) -> Response:
     except LanternaInputError as err:  # a write error: nothing was changed
         current_app.logger.error("%s", err)
         return json_error(500, str(err))
-    return _json({"presets": len(library["presets"])})
+    return json_response({"presets": len(library["presets"])})
 
 
-def _dataset(name: str) -> Path | None:
+def dataset_path(name: str) -> Path | None:
     """The dataset ``name`` of the data root (its link, as writers use it), or None."""
     root = Path(current_app.config["DATA_ROOT"])
     if name.startswith(".") or "/" in name or contained_file(root, f"{name}/lanterna.json") is None:

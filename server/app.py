@@ -5,8 +5,8 @@
 the data root, and JSON documents get the dataset's recorded ``baseUrl`` rewritten to the URL of
 the request, so every IIIF ``id`` matches the URL it was fetched from. The level-1 image server
 over pyramidal TIFFs lives in :mod:`lanterna.server.image_api` (``/iiif/3/…``), the authoring
-API in :mod:`lanterna.server.api` (``/api/…``); errors are short plain text
-(:mod:`lanterna.server.errors`).
+API in :mod:`lanterna.server.api` and :mod:`lanterna.server.annotations_api` (``/api/…``);
+errors are short plain text (:mod:`lanterna.server.errors`).
 """
 
 from __future__ import annotations
@@ -23,7 +23,7 @@ from werkzeug.wrappers import Response as BaseResponse
 
 from lanterna.tiler.iiif.spec import IMAGE_CONTEXT, PRESENTATION_CONTEXT
 
-from . import api, image_api
+from . import annotations_api, api, image_api
 from .errors import plain_error, register_error_handlers
 from .safe_path import contained_dir, contained_file, raw_path_is_safe
 
@@ -48,7 +48,8 @@ def create_app(config: dict[str, Any] | None = None) -> Flask:
     Config keys: ``DATA_ROOT`` (folder of datasets, required), ``VIEWER_DIR`` (the built viewer
     page, default :func:`default_viewer`), the image server's ``IIIF_*``
     limits (:data:`lanterna.server.image_api.DEFAULTS`, docs/serving.md), and
-    ``AUTHORING_TOKEN`` (the authoring API's token, :mod:`lanterna.server.api`; None: read-only).
+    ``AUTHORING_TOKEN`` (the authoring API's token, :mod:`lanterna.server.api`; None: read-only),
+    ``REBUILD_INLINE`` (rebuild overlays in the request instead of in the background: tests).
     """
     app = Flask(__name__)
     app.url_map.merge_slashes = False  # "//x" is a bad path (404), not a redirect to "/x"
@@ -61,6 +62,7 @@ def create_app(config: dict[str, Any] | None = None) -> Flask:
     register_error_handlers(app)
     image_api.init_app(app)
     api.init_app(app)
+    annotations_api.init_app(app)
 
     @app.before_request
     def refuse_hidden_separators() -> None:

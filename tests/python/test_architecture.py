@@ -48,7 +48,7 @@ ALLOWED: dict[str, set[str]] = {
     f"{T}.demo": BASE | {f"{T}.formats", f"{T}.inputs", f"{T}.iiif", f"{T}.render",
                          f"{T}.dataset", f"{T}.overlays", f"{T}.fit"},
     f"{T}.presets": BASE | {f"{T}.render", f"{T}.dataset"},
-    "lanterna.server": {E, f"{T}.iiif", f"{T}.presets"},
+    "lanterna.server": {E, f"{T}.iiif", f"{T}.presets", f"{T}.overlays"},
     "lanterna.commands": {"*"},
     "lanterna.cli": {"*"},
 }

@@ -10,57 +10,34 @@ seed-paper scene's ``overlay`` entry during an import. The pure geometry is in
 
 from __future__ import annotations
 
-import json
 import logging
-import shutil
 from collections.abc import Mapping
-from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
 import pyvips
 
 from lanterna.errors import LanternaInputError
-from lanterna.tiler.dataset.publish import writing
-from lanterna.tiler.dataset.writer import DatasetWriter, read_description, rewriting
+from lanterna.tiler.dataset.writer import DatasetWriter, read_description
 from lanterna.tiler.iiif.geometry import scale_factors
-from lanterna.tiler.iiif.pyramid import write_pyramid
 
 from . import geometry as og
+from . import store
 from .composite import fit_level_image, load_rgba
 from .patches import levels_from_gimp, levels_from_patches, read_texts
+from .published import OverlayInputError, OverlayReport, canvas_of, find_layer, image_id
+from .rebuild import rebuild_from_store
+
+__all__ = ["OverlayInputError", "OverlayReport", "build_overlays", "image_id", "overlay_rows",
+           "overlay_summary", "scene_overlay"]
 
 log = logging.getLogger("lanterna.overlays")
 
 
-class OverlayInputError(LanternaInputError):
-    """No overlay level could be built; ``errors`` holds the one-line error of each bad file."""
-
-    def __init__(self, source: str | Path | None, problem: str, errors: list[str]) -> None:
-        super().__init__(source, problem)
-        self.errors = errors
-
-
-@dataclass
-class OverlayReport:
-    """What :func:`build_overlays` did: levels written, patches used, per-file errors."""
-
-    layer: str
-    levels: list[int] = field(default_factory=list)
-    patches: int = 0
-    errors: list[str] = field(default_factory=list)
-    warnings: list[str] = field(default_factory=list)
-
-
-def image_id(layer_id: str, level: int) -> str:
-    """Return the IIIF identifier of a layer's overlay level image."""
-    return f"{layer_id}_ov{level}"
-
-
 def build_overlays(dataset_dir: Path, layer_id: str, *, patches_dir: Path | None = None,
-                   gimp_dir: Path | None = None,
-                   texts: Path | Mapping[Any, Any] | None = None) -> OverlayReport:
-    """Build (or replace) the overlay of layer ``layer_id`` of a dataset.
+                   gimp_dir: Path | None = None, texts: Path | Mapping[Any, Any] | None = None,
+                   replace: bool = False) -> OverlayReport:
+    """Put patches, level images or texts into a layer's patch store, then rebuild its overlay.
 
     Parameters
     ----------
@@ -69,12 +46,18 @@ def build_overlays(dataset_dir: Path, layer_id: str, *, patches_dir: Path | None
     layer_id:
         The layer the overlay belongs to.
     patches_dir:
-        A folder of ``L_X_Y_W_H_O_INFO.png`` patches (docs/annotations.md).
+        A folder of ``L_X_Y_W_H_O_INFO.png`` patches (docs/annotations.md), added to the store
+        (a patch of the same name is replaced).
     gimp_dir:
-        Instead of patches, a folder of one transparent image per level (``level_L.png``).
+        A folder of one transparent image per level (``level_L.png``), each put in the store as a
+        whole-canvas patch ``L_0_0_W_H_0_level.png`` (earlier ``_level`` patches go).
     texts:
-        ``{"L": {"short": …, "long": …}}`` as a JSON file or a mapping. A level without an entry
-        keeps the texts it had in the previous overlay.
+        ``{"L": {"short": …, "long": …}}`` as a JSON file or a mapping, into ``levels.json``. A
+        level without an entry keeps its texts.
+    replace:
+        Empty the layer's store first (only ``patches_dir``/``gimp_dir`` remain).
+
+    With no source at all the overlay is rebuilt from the store as it is (if it changed).
 
     Returns
     -------
@@ -83,74 +66,61 @@ def build_overlays(dataset_dir: Path, layer_id: str, *, patches_dir: Path | None
     Raises
     ------
     OverlayInputError
-        When no level can be built (the dataset is then unchanged).
+        When a source is given and none of its files is valid (store and dataset unchanged).
     """
-    if (patches_dir is None) == (gimp_dir is None):
-        raise ValueError("give exactly one of patches_dir and gimp_dir")
+    if patches_dir is not None and gimp_dir is not None:
+        raise ValueError("give at most one of patches_dir and gimp_dir")
     dataset_dir = Path(dataset_dir)
-    with writing(dataset_dir):  # from the first read to the publish: no lost update
-        return _build(dataset_dir, layer_id, patches_dir, gimp_dir, texts)
-
-
-def _build(dataset_dir: Path, layer_id: str, patches_dir: Path | None, gimp_dir: Path | None,
-           texts: Path | Mapping[Any, Any] | None) -> OverlayReport:
     desc = read_description(dataset_dir)
-    layer = _find_layer(desc, layer_id, dataset_dir)
-    width, height = int(desc["width"]), int(desc["height"])
-    deepest, tile_size = _pyramid_of(dataset_dir, layer["body"])
+    canvas = canvas_of(dataset_dir, desc, find_layer(desc, layer_id, dataset_dir))
     new_texts = read_texts(texts)
-    report = OverlayReport(layer_id)
-    patches: list[og.Patch] = []
+    files: dict[str, bytes] = {}
+    errors: list[str] = []
     if patches_dir is not None:
         source = Path(patches_dir)
-        levels, patches, report.errors = levels_from_patches(source, width, height, deepest)
-    else:
-        source = Path(gimp_dir)  # type: ignore[arg-type]
-        levels, report.errors = levels_from_gimp(source, width, height, deepest)
-    if not levels:
-        problem = (f"no valid {'patches' if patches_dir is not None else 'level images'}"
-                   f"{f' ({len(report.errors)} file(s) rejected)' if report.errors else ''}; "
-                   "the dataset is unchanged")
-        raise OverlayInputError(source, problem, report.errors)
-    for level in sorted(set(new_texts) - set(levels)):
+        _, valid, errors = levels_from_patches(source, canvas.width, canvas.height,
+                                               canvas.deepest)
+        files = {p.file: (source / p.file).read_bytes() for p in valid}
+    elif gimp_dir is not None:
+        source = Path(gimp_dir)
+        levels, errors = levels_from_gimp(source, canvas.width, canvas.height, canvas.deepest)
+        files = {f"{lv}_0_0_{canvas.width}_{canvas.height}_0_level.png": store.encode_png(rgba)
+                 for lv, rgba in levels.items()}
+    if (patches_dir is not None or gimp_dir is not None) and not files:
+        what = "patches" if patches_dir is not None else "level images"
+        rejected = f" ({len(errors)} file(s) rejected)" if errors else ""
+        raise OverlayInputError(source, f"no valid {what}{rejected}; the dataset is unchanged",
+                                errors)
+    _into_store(dataset_dir, layer_id, files, replace=replace, gimp=gimp_dir is not None,
+                texts={str(k): v for k, v in new_texts.items() if k <= canvas.deepest})
+    report = rebuild_from_store(dataset_dir, layer_id)
+    report.errors = errors + report.errors
+    for level in sorted(set(new_texts) - set(report.levels)):
         report.warnings.append(f"texts for level {level} ignored: no overlay image at that level")
-
-    previous = _previous_levels(layer)
-    old_images = {e["image"] for e in previous.values()}
-    clash = sorted(ident for ident in (image_id(layer_id, lv) for lv in levels)
-                   if ident in desc.get("images", {}) and ident not in old_images)
-    if clash:
-        raise LanternaInputError(dataset_dir, f"image id(s) {', '.join(clash)} already used by "
-                                 "something other than this layer's overlay")
-
-    with rewriting(dataset_dir) as (tmp, new_desc):
-        new_layer = _find_layer(new_desc, layer_id, dataset_dir)
-        for entry in previous.values():  # an old overlay's images go; the new ones are rewritten
-            shutil.rmtree(tmp / "iiif" / entry["image"], ignore_errors=True)
-            new_desc["images"].pop(entry["image"], None)
-        entries = []
-        ds_url = f"{new_desc['baseUrl'].rstrip('/')}/{new_desc['name']}"
-        for level, rgba in sorted(levels.items()):
-            ident = image_id(layer_id, level)
-            shutil.rmtree(tmp / "iiif" / ident, ignore_errors=True)
-            (tmp / "iiif").mkdir(exist_ok=True)
-            write_pyramid(pyvips.Image.new_from_array(rgba).copy(interpretation="srgb"),
-                          tmp / "iiif" / ident, f"{ds_url}/iiif/{ident}", fmt="png",
-                          tile_size=tile_size)
-            h, w = rgba.shape[:2]
-            new_desc["images"][ident] = {"format": "png", "width": w, "height": h, "bands": 4}
-            text = new_texts.get(level) or previous.get(level) or {}
-            entries.append({"level": level, "image": ident, "width": w, "height": h,
-                            "short": text.get("short", ""), "long": text.get("long", "")})
-        new_layer["overlay"] = {
-            "source": "patches" if patches_dir is not None else "gimp",
-            "levels": entries,
-            "patches": [{"level": p.level, "x": p.x, "y": p.y, "w": p.w, "h": p.h,
-                         "order": p.order, "info": p.info, "file": p.file} for p in patches],
-        }
-    report.levels = sorted(levels)
-    report.patches = len(patches)
     return report
+
+
+def _into_store(dataset: Path, layer_id: str, files: Mapping[str, bytes], *, replace: bool,
+                gimp: bool, texts: Mapping[str, Mapping[str, str]]) -> None:
+    """Write ``files`` (name → PNG bytes) and ``texts`` into the layer's store, under its lock."""
+    with store.store_lock(dataset):
+        folder = store.store_dir(dataset, layer_id)
+        if replace:
+            store.store_root(dataset).mkdir(exist_ok=True)
+            folder.mkdir(exist_ok=True)
+        folder = store.ensure_store(dataset, layer_id)
+        for path in sorted(folder.iterdir()):
+            if path.name.startswith(".") or not path.is_file():
+                continue
+            level_patch = path.stem.endswith("_level") and path.suffix.lower() == ".png"
+            if (replace and path.name != store.LEVEL_TEXTS) or (gimp and level_patch):
+                path.unlink()
+                if path.suffix.lower() == ".png":
+                    (folder / f"{path.stem}.json").unlink(missing_ok=True)
+        for name, data in files.items():
+            store.put_file(folder, name, data)
+    if texts:
+        store.set_level_texts(dataset, layer_id, texts)
 
 
 def scene_overlay(ds: DatasetWriter, layer_id: str, raw: Mapping[str, Any],
@@ -213,30 +183,3 @@ def overlay_rows(desc: Mapping[str, Any]) -> list[dict[str, Any]]:
                      "patches": len(patches),
                      "source": overlay.get("source") if isinstance(overlay, dict) else None})
     return rows
-
-
-def _find_layer(desc: dict[str, Any], layer_id: str, where: Path) -> dict[str, Any]:
-    layers: list[dict[str, Any]] = desc["layers"]
-    for layer in layers:
-        if layer["id"] == layer_id:
-            return layer
-    ids = ", ".join(layer["id"] for layer in layers)
-    raise LanternaInputError(where, f"no layer {layer_id!r} (layers: {ids})")
-
-
-def _previous_levels(layer: Mapping[str, Any]) -> dict[int, dict[str, Any]]:
-    overlay = layer.get("overlay")
-    if not isinstance(overlay, dict):
-        return {}
-    return {int(e["level"]): e for e in overlay.get("levels", [])
-            if isinstance(e, dict) and isinstance(e.get("image"), str)}
-
-
-def _pyramid_of(dataset_dir: Path, image: str) -> tuple[int, int]:
-    """Return the deepest level and the tile size of a stored image's pyramid."""
-    path = dataset_dir / "iiif" / image / "info.json"
-    try:
-        tiles = json.loads(path.read_text())["tiles"][0]
-        return og.max_level(tiles["scaleFactors"]), int(tiles["width"])
-    except (OSError, ValueError, KeyError, IndexError, TypeError):
-        raise LanternaInputError(path, "cannot read the layer's pyramid") from None

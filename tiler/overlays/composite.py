@@ -26,21 +26,41 @@ def load_rgba(path: Path) -> npt.NDArray[np.uint8]:
     check_regular_file(path, "an overlay image")
     try:
         img = pyvips.Image.new_from_file(str(path), access="sequential")
-        check_pixels(path, img.width, img.height, "the overlay image")
+    except pyvips.Error as err:
+        raise LanternaInputError(path, f"cannot read image ({_first(err)})") from None
+    return rgba_of(img, path)
+
+
+def decode_rgba(data: bytes, source: str | Path | None) -> npt.NDArray[np.uint8]:
+    """:func:`load_rgba` of an encoded image in memory (an upload); errors name ``source``."""
+    try:
+        img = pyvips.Image.new_from_buffer(data, "", access="sequential")
+    except pyvips.Error as err:
+        raise LanternaInputError(source, f"cannot read image ({_first(err)})") from None
+    return rgba_of(img, source)
+
+
+def rgba_of(img: pyvips.Image, source: str | Path | None) -> npt.NDArray[np.uint8]:
+    """Decode an opened image with alpha to ``(H, W, 4)`` uint8 RGBA; errors name ``source``."""
+    try:
+        check_pixels(source, img.width, img.height, "the overlay image")
         if not img.hasalpha():
-            raise LanternaInputError(path, f"has no alpha channel ({img.bands} band(s)); overlay "
-                                     "images must be RGBA")
+            raise LanternaInputError(source, f"has no alpha channel ({img.bands} band(s)); "
+                                     "overlay images must be RGBA")
         if img.interpretation not in ("srgb", "b-w") or img.format != "uchar":
             img = img.colourspace("srgb" if img.bands > 2 else "b-w").cast("uchar")
         if img.bands == 2:
             img = img[0].bandjoin([img[0], img[0], img[1]])
         if img.bands != 4:
-            raise LanternaInputError(path, f"has {img.bands} bands; overlay images must be RGBA")
+            raise LanternaInputError(source, f"has {img.bands} bands; overlay images must be RGBA")
         array: npt.NDArray[np.uint8] = np.ascontiguousarray(img.numpy(), dtype=np.uint8)
     except pyvips.Error as err:
-        first = str(err).strip().splitlines()[0] if str(err).strip() else "unreadable image"
-        raise LanternaInputError(path, f"cannot read image ({first})") from None
+        raise LanternaInputError(source, f"cannot read image ({_first(err)})") from None
     return array
+
+
+def _first(err: pyvips.Error) -> str:
+    return str(err).strip().splitlines()[0] if str(err).strip() else "unreadable image"
 
 
 def premultiply(rgba: npt.NDArray[np.uint8]) -> FloatImage:

@@ -12,7 +12,7 @@ import pytest
 
 from lanterna.cli import main
 from lanterna.errors import LanternaInputError
-from lanterna.tiler.overlays import build as overlays
+from lanterna.tiler.overlays import rebuild
 from lanterna.tiler.overlays.build import OverlayInputError, build_overlays
 from tests.python.fixtures.overlays import make_dataset, patch
 from tests.python.fixtures.publishing import leftovers
@@ -138,7 +138,7 @@ def test_failure_midway_keeps_the_previous_overlay_and_leaves_no_temp_dirs(
         png(new / f"{level}_0_0_40_40_0_new.png", patch(10, 10, (0, 0, 255), 255))
     before = tree(dataset)
     calls: list[str] = []
-    real = overlays.write_pyramid
+    real = rebuild.write_pyramid
 
     def failing(*args: Any, **kwargs: Any) -> dict[str, Any]:
         calls.append(str(args[1]))
@@ -146,7 +146,7 @@ def test_failure_midway_keeps_the_previous_overlay_and_leaves_no_temp_dirs(
             raise OSError(28, "No space left on device")
         return real(*args, **kwargs)
 
-    monkeypatch.setattr(overlays, "write_pyramid", failing)
+    monkeypatch.setattr(rebuild, "write_pyramid", failing)
     with pytest.raises(LanternaInputError, match=f"^{dataset}: cannot write "
                        r"\(No space left on device\); nothing was changed$"):
         build_overlays(dataset, "vis", patches_dir=new)
@@ -154,7 +154,11 @@ def test_failure_midway_keeps_the_previous_overlay_and_leaves_no_temp_dirs(
     assert tree(dataset) == before
     desc = json.loads((dataset / "lanterna.json").read_text())
     assert desc["layers"][0]["overlay"]["levels"][0]["short"] == "old"
-    assert leftovers(dataset.parent) == [dataset.name]
+    assert leftovers(dataset.parent) == [dataset.name, f"{dataset.name}.annotations"]
+    # the patches are in the store: the next rebuild publishes them
+    monkeypatch.undo()
+    assert rebuild.is_stale(dataset, "vis")
+    assert rebuild.rebuild_from_store(dataset, "vis").levels == [0, 1, 2]
 
 
 def test_an_image_of_another_layer_is_never_replaced(tmp_path: Path) -> None:

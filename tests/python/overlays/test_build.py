@@ -94,7 +94,8 @@ def test_level_images_are_iiif_pyramids(built: Path) -> None:
 def test_lanterna_json_keeps_levels_texts_and_patches(built: Path) -> None:
     desc = json.loads((built / "lanterna.json").read_text())
     overlay = desc["layers"][0]["overlay"]
-    assert overlay["source"] == "patches"
+    assert overlay["source"] == "store" and overlay["build"] == 1
+    assert len(overlay["fingerprint"]) == 64
     assert overlay["levels"] == [
         {"level": 0, "image": "vis_ov0", "width": W, "height": H, "short": "Strokes",
          "long": "<p>Red <b>strokes</b></p>"},
@@ -104,8 +105,18 @@ def test_lanterna_json_keeps_levels_texts_and_patches(built: Path) -> None:
         "0_90_45_20_20_0_under.png", "0_100_50_40_30_1_red stroke.png",
         "0_120_60_40_30_2_blue_box.png", "0_580_380_40_40_3_corner.png",
         "2_300_200_64_64_0_tower.png"]
-    assert overlay["patches"][2] == {"level": 0, "x": 120, "y": 60, "w": 40, "h": 30, "order": 2,
-                                     "info": "blue_box", "file": "0_120_60_40_30_2_blue_box.png"}
+    record = overlay["patches"][2]
+    assert record == {"type": "LanternaPatch", "version": 1, "id": "0_120_60_40_30_2_blue_box",
+                      "layer": "vis", "level": 0, "x": 120, "y": 60, "w": 40, "h": 30,
+                      "order": 2, "info": "blue_box", "author": "", "created": record["created"],
+                      "modified": record["created"], "short": "", "long": "",
+                      "motivation": "commenting", "state": None,
+                      "file": "0_120_60_40_30_2_blue_box.png", "width": 40, "height": 30}
+    assert record["created"].endswith("Z")
+    # the published patch files, one per record, equal to the patches
+    for name, array in PATCHES.items():
+        stored = pyvips.Image.new_from_file(str(built / "annotations/vis" / name)).numpy()
+        np.testing.assert_array_equal(stored, array)
     assert desc["images"]["vis_ov2"] == {"format": "png", "width": 150, "height": 100, "bands": 4}
     # the layer's relight service document is not touched by the overlay
     assert "overlay" not in json.loads((built / "layers/vis.json").read_text())
@@ -166,13 +177,13 @@ def test_server_serves_overlay_tiles_with_rewritten_ids(client: FlaskClient) -> 
 def test_annotate_list(built: Path, capsys: pytest.CaptureFixture[str]) -> None:
     assert main(["annotate", "list", str(built)]) == 0
     out = capsys.readouterr().out.splitlines()
-    assert out == ["vis: 2 level(s), 5 patch(es) (from patches)",
+    assert out == ["vis: 2 level(s), 5 patch(es) (from store)",
                    "  level 0  600x400  Strokes (long text)",
                    "  level 2  150x100  Tower (long text)",
                    "uv: no overlay"]
 
 
-def test_rebuild_replaces_the_overlay_and_removes_unused_images(tmp_path: Path) -> None:
+def test_replace_empties_the_store_and_old_images_go_a_build_later(tmp_path: Path) -> None:
     dataset = make_dataset(tmp_path)
     first, second = tmp_path / "a", tmp_path / "b"
     first.mkdir()
@@ -184,17 +195,29 @@ def test_rebuild_replaces_the_overlay_and_removes_unused_images(tmp_path: Path) 
     tile = dataset / "iiif/vis/0,0,256,256/256,256/0/default.png"
     inode = tile.stat().st_ino
     build_overlays(dataset, "vis", patches_dir=first, texts={"2": {"short": "kept"}})
-    report = build_overlays(dataset, "vis", patches_dir=second)
+    report = build_overlays(dataset, "vis", patches_dir=second, replace=True)
     assert report.levels == [1, 2] and report.patches == 2 and report.errors == []
-    assert not (dataset / "iiif/vis_ov0").exists()
-    assert (dataset / "iiif/vis_ov1/info.json").is_file()
+    assert report.build == 2
+    assert (dataset / "iiif/vis_ov1_b2/info.json").is_file()
     desc = json.loads((dataset / "lanterna.json").read_text())
-    assert "vis_ov0" not in desc["images"] and "vis_ov1" in desc["images"]
+    assert {"vis_ov1_b2", "vis_ov2_b2"} <= set(desc["images"])
+    assert not {"vis_ov0", "vis_ov2", "vis_ov1"} & set(desc["images"])
     levels = desc["layers"][0]["overlay"]["levels"]
-    assert [(e["level"], e["short"]) for e in levels] == [(1, ""), (2, "kept")]
-    assert read_image(dataset, "vis_ov2")[0, 0].tolist() == [0, 0, 255, 255]
+    assert [(e["level"], e["image"], e["short"]) for e in levels] == [
+        (1, "vis_ov1_b2", ""), (2, "vis_ov2_b2", "kept")]
+    assert read_image(dataset, "vis_ov2_b2")[0, 0].tolist() == [0, 0, 255, 255]
+    assert sorted(p.name for p in (dataset / "annotations/vis").iterdir()) == [
+        "1_0_0_20_20_0_c.png", "2_0_0_8_8_0_d.png"]
+    # the previous build's images stay (unlisted) for one more version, then go
+    assert (dataset / "iiif/vis_ov0/info.json").is_file()
+    assert build_overlays(dataset, "vis", patches_dir=first).build == 3  # adds: a, b, c, d
+    assert not (dataset / "iiif/vis_ov0").exists() and not (dataset / "iiif/vis_ov2").exists()
+    assert (dataset / "iiif/vis_ov2_b2").is_dir() and (dataset / "iiif/vis_ov2_b3").is_dir()
+    overlay = json.loads((dataset / "lanterna.json").read_text())["layers"][0]["overlay"]
+    assert [p["id"] for p in overlay["patches"]] == [
+        "0_0_0_10_10_0_a", "1_0_0_20_20_0_c", "2_0_0_40_40_0_b", "2_0_0_8_8_0_d"]
     assert tile.stat().st_ino == inode  # unchanged tiles are hard-linked, not copied
-    assert leftovers(tmp_path) == ["a", "b", "obj"]
+    assert leftovers(tmp_path) == ["a", "b", "obj", "obj.annotations"]
 
 
 def test_gimp_levels_are_used_as_drawn(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
@@ -219,5 +242,7 @@ def test_gimp_levels_are_used_as_drawn(tmp_path: Path, capsys: pytest.CaptureFix
     assert level2.shape == (100, 150, 4) and np.all(level2[..., 2] == 255)
     desc = json.loads((dataset / "lanterna.json").read_text())
     overlay = desc["layers"][1]["overlay"]
-    assert overlay["source"] == "gimp" and overlay["patches"] == []
+    assert overlay["source"] == "store"
+    assert [p["id"] for p in overlay["patches"]] == ["1_0_0_600_400_0_level",
+                                                     "2_0_0_600_400_0_level"]
     assert [(e["level"], e["short"]) for e in overlay["levels"]] == [(1, "one"), (2, "")]

@@ -43,8 +43,9 @@ def _error(resp: Any) -> str:
 
 
 def test_the_index_says_whether_authoring_is_on(root: Path) -> None:
-    assert _client(root).get("/api/").get_json() == {"authoring": True}
-    assert _client(root, None).get("/api/").get_json() == {"authoring": False}
+    assert _client(root).get("/api/").get_json() == {"authoring": True, "annotations": True}
+    assert _client(root, None).get("/api/").get_json() == {"authoring": False,
+                                                         "annotations": True}
 
 
 def test_get_gives_an_empty_library_then_the_stored_one(root: Path) -> None:

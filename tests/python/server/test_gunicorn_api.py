@@ -59,7 +59,7 @@ def test_every_worker_has_the_token(served: tuple[str, Path, str]) -> None:
     auth = {"Authorization": f"Bearer {TOKEN}"}
     # many requests over fresh connections: both workers answer some of them
     for _ in range(12):
-        assert _request("GET", f"{url}/api/") == (200, {"authoring": True})
+        assert _request("GET", f"{url}/api/") == (200, {"authoring": True, "annotations": True})
     status, body = _request("PUT", f"{url}/api/datasets/obj/presets", small_library(),
                             {"Authorization": "Bearer not-the-token-at-all"})
     assert status == 401 and "authoring token" in body["error"]
