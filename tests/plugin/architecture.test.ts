@@ -26,13 +26,15 @@ const ALLOWED: Readonly<Record<string, readonly string[]>> = {
   presets: ['errors', 'render'],
   state: ['errors', 'render', 'lens'],
   ui: ['errors', 'math'],
+  // the individual annotations: patch lists, hidden patches and the overlay's draw plan
+  annotations: ['errors', 'iiif'],
   // overlay-state sanitises the hypertext with ui/sanitize-html (a pure function).
-  overlay: ['errors', 'iiif', 'tiles', 'ui'],
+  overlay: ['errors', 'iiif', 'tiles', 'ui', 'annotations'],
   drawer: ['errors', 'math', 'iiif', 'render', 'gl', 'layers', 'tiles', 'lens'],
   api: ['errors', 'math', 'iiif', 'render', 'lens', 'overlay', 'ui', 'drawer', 'presets', 'state'],
   panel: ['errors', 'math', 'iiif', 'render', 'lens', 'overlay', 'ui', 'api', 'presets'],
   viewer: ['errors', 'math', 'iiif', 'render', 'layers', 'tiles', 'lens', 'overlay', 'ui', 'drawer', 'api', 'panel',
-    'presets', 'state'],
+    'presets', 'state', 'annotations'],
   // the measurement mode reads a viewer's planes through its public API
   measure: ['errors', 'math', 'iiif', 'tiles', 'ui', 'api'],
   // The page's view tools (URL hash, snapshot button, scale bar, help, keys), on the viewer API.
@@ -40,7 +42,7 @@ const ALLOWED: Readonly<Record<string, readonly string[]>> = {
   // The Annotate toolbox: the patch frame, strokes and uploads, on the viewer API and the panel's authoring URLs/token.
   annotate: ['errors', 'api', 'panel'],
   index: ['errors', 'math', 'iiif', 'render', 'gl', 'layers', 'tiles', 'lens', 'ui', 'overlay', 'drawer', 'api',
-    'panel', 'viewer', 'presets', 'state', 'measure', 'tools', 'annotate'],
+    'panel', 'viewer', 'presets', 'state', 'measure', 'tools', 'annotations', 'annotate'],
   demo: ['index'],
   simple: ['index'],
 };
@@ -52,7 +54,7 @@ const PACKAGES: Readonly<Record<string, readonly string[]>> = {
 };
 
 /** Parts that are pure: no DOM, no GL (they run, and are tested, in Node). */
-const PURE = ['errors', 'math', 'iiif', 'render', 'presets', 'state'];
+const PURE = ['errors', 'math', 'iiif', 'render', 'presets', 'state', 'annotations'];
 /** Pure files in folders that also hold DOM code. */
 const PURE_FILES = ['annotate/patch-frame.ts', 'annotate/patch-name.ts', 'annotate/stroke-history.ts',
   'annotate/pen-width.ts', 'annotate/build-status.ts'];

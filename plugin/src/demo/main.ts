@@ -7,7 +7,8 @@
  * (switching layers, the lens, an unknown layer or mode in the URL) show as dismissible notices.
  */
 import {
-  createAbout, createAnnotator, createControls, createLensControls, createLightTools, createPresetsPanel, createViewer,
+  createAbout, createAnnotationList, createAnnotator, createControls, createLensControls, createLightTools,
+  createPresetsPanel, createViewer,
   LanternaError, MODE_LABELS, attempt as attemptReporting, createMeasurement, type MeasurementWidget, UnknownLayerError, isRenderMode, mountViewTools,
   type Annotator, type LanternaViewer,
 } from '../index';
@@ -73,6 +74,7 @@ function buildPanel(lanterna: LanternaViewer, panel: HTMLElement, manifest: stri
   createLightTools(lanterna, panel);
   createLensControls(lanterna, panel, report);
   createPresetsPanel(lanterna, panel, { manifestUrl: manifest, onError: report });
+  createAnnotationList(lanterna, panel, report);
   if (lanterna.manifest) {
     createAbout(lanterna.manifest, panel);
   }

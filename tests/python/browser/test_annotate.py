@@ -67,6 +67,19 @@ VIEWED = evaluate("""() => {
 #: The rows (CSS px of the canvas) of the light and the hard pen stroke.
 PEN_Y = (450, 560)
 TOKEN_ROW = ".lanterna-annotate .lanterna-token-row"
+#: Once the view has stopped moving: the region in view and where the drawing canvas is.
+PLACED = evaluate("""async () => {
+  const l = window.lanterna;
+  const nextFrame = () => new Promise((r) => { requestAnimationFrame(r); });
+  let last = '';
+  for (let k = 0; k < 600 && JSON.stringify(l.getState().view) !== last; k++) {
+    last = JSON.stringify(l.getState().view);
+    await nextFrame();
+    await nextFrame();
+  }
+  const r = document.querySelector('.lanterna-draw-surface').getBoundingClientRect();
+  return { view: l.getState().view, rect: [r.left, r.top, r.width, r.height] };
+}""")
 STATUS = "document.querySelector('.lanterna-annotate-status').textContent"
 
 
@@ -103,6 +116,14 @@ def expected_frame(region: list[float], level: int) -> tuple[int, int, int, int,
     width = int(np.ceil(x1 / s)) - x // s
     height = int(np.ceil(y1 / s)) - y // s
     return x, y, x1 - x, y1 - y, width, height
+
+
+def screen_rect(image_rect: list[int], view: list[float]) -> list[float]:
+    """``image_rect`` (full-resolution px) in CSS px of the page's viewer (at 0, 0, VIEW) showing
+    the image region ``view``."""
+    sx, sy = VIEW[0] / view[2], VIEW[1] / view[3]
+    return [(image_rect[0] - view[0]) * sx, (image_rect[1] - view[1]) * sy,
+            image_rect[2] * sx, image_rect[3] * sy]
 
 
 def drag(kind: str, a: tuple[float, float], b: tuple[float, float], **extra: Any) -> dict[str, Any]:
@@ -188,6 +209,8 @@ def test_strokes_undo_redo_download_and_upload_give_the_served_overlay(
         evaluate(f"() => {STATUS}"),                                      # 44
         VIEWED,                                                           # 45
         FRAME,                                                            # 46: after
+        {"click": "#zoom-in"},
+        PLACED,                                                           # 48
     ]
     found = run_page(page(url), steps, tmp_path, VIEW, routes=(), allow_console_errors=["401"])
     v = found["values"]
@@ -201,6 +224,10 @@ def test_strokes_undo_redo_download_and_upload_give_the_served_overlay(
     assert canvases[7].shape == (height, width, 4)
     assert not canvases[7].any(), "the canvas starts transparent"
     rect = v[7]["rect"]
+    s = 2 ** level
+    x0, y0 = x // s, y // s
+    on_screen = [x0 * s, y0 * s, width * s, height * s]
+    assert rect == pytest.approx(screen_rect(on_screen, viewed["view"]), abs=0.01)
     assert rect[2] > 650 and rect[3] > 600, "the strokes fall on the canvas, clear of the toolbox"
     # each stroke changed the drawing
     assert canvases[9][..., 3].any()
@@ -235,9 +262,7 @@ def test_strokes_undo_redo_download_and_upload_give_the_served_overlay(
     store = sorted(p.name for p in (root / "obj.annotations" / "ptm").glob("*.png"))
     assert store == [f"{level}_{x}_{y}_{w}_{h}_0_Crack-upper-left.png"]
     served_level = overlay_image(url, level)
-    s = 2 ** level
     assert served_level.shape == (-(-H // s), -(-W // s), 4)
-    x0, y0 = x // s, y // s
     assert np.array_equal(served_level[y0:y0 + height, x0:x0 + width], drawing)
     outside = served_level.copy()
     outside[y0:y0 + height, x0:x0 + width] = 0
@@ -250,6 +275,11 @@ def test_strokes_undo_redo_download_and_upload_give_the_served_overlay(
     assert changed[oy + 175, ox + 450], "the middle of the mouse stroke"
     assert changed[oy + PEN_Y[1], ox + 470], "the hard pen stroke"
     assert not changed[:, ox + 700:].any(), "nothing drawn right of the strokes"
+    # the canvas follows the view: zoomed in with the toolbar, it lies on the same image pixels
+    placed = v[48]
+    assert placed["view"] != viewed["view"]
+    assert placed["rect"] == pytest.approx(screen_rect(on_screen, placed["view"]), abs=0.01)
+    assert placed["rect"][2] == pytest.approx(rect[2] * 1.5, rel=1e-3)
 
 
 def test_without_authoring_there_is_no_annotate_button_and_no_status_reads(
