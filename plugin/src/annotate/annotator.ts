@@ -54,12 +54,12 @@ export interface Annotator {
 }
 
 type Viewer = Pick<LanternaViewer, 'viewer' | 'getState' | 'getImageRegion' | 'getOverlayState' | 'manifest'
-  | 'getActiveLayer'>;
+  | 'getActiveLayer' | 'getAnnotations' | 'refreshAnnotations'>;
 
 /** Make the Annotate tool for `lanterna`. */
 export function createAnnotator(lanterna: Viewer, options: AnnotatorOptions): Annotator {
   const urls = authoringUrls(options.manifestUrl);
-  const refresh = options.refresh ?? (() => Promise.resolve());
+  const refresh = options.refresh ?? (() => lanterna.refreshAnnotations());
   const listeners = new Set<() => void>();
   let surface: DrawSurface | null = null;
   let orders: number[] = [];
@@ -93,16 +93,25 @@ export function createAnnotator(lanterna: Viewer, options: AnnotatorOptions): An
   };
 
   const knownOrders = async (): Promise<void> => {
+    orders = lanterna.getAnnotations(patchLayer).map((a) => a.order); // the published ones
     const where = endpoints(patchLayer);
     if (!where) {
       return;
     }
     try {
       const response = await fetch(where.patches, { headers: { Accept: 'application/json' }, cache: 'no-store' });
-      const doc = response.ok ? await response.json() as { patches?: { order?: unknown }[] } : {};
-      orders = (doc.patches ?? []).map((p) => p.order).filter((o): o is number => typeof o === 'number');
+      if (response.ok) {
+        const doc = await response.json() as { patches?: { order?: unknown }[] };
+        orders = (doc.patches ?? []).map((p) => p.order).filter((o): o is number => typeof o === 'number');
+        // A layer with level images but no patch records yet (a GIMP or scene overlay): its first
+        // change puts each level image in the store as a patch of order 0 (docs/annotations.md).
+        const levels = lanterna.manifest?.layers.find((l) => l.id === patchLayer)?.overlays.length ?? 0;
+        if (orders.length === 0 && levels > 0) {
+          orders = [0];
+        }
+      }
     } catch {
-      // no API (a static host): the download is numbered from 0
+      // no API (a static host): numbered after the published patches
     }
   };
 

@@ -24,6 +24,7 @@ import numpy.typing as npt
 import pytest
 from PIL import Image
 
+from lanterna.cli import main
 from lanterna.tiler.dataset.layers import add_ptm_layer
 from lanterna.tiler.dataset.plane_format import parse_plane_format
 from lanterna.tiler.dataset.writer import DatasetWriter
@@ -90,6 +91,15 @@ def served(tmp_path_factory: pytest.TempPathFactory) -> Iterator[tuple[str, Path
     with DatasetWriter(root / "obj", name="obj", label="Object", width=W, height=H) as ds:
         add_ptm_layer(ds, random_ptm_of_size(W, H), layer_id="ptm",
                       plane_format=parse_plane_format("png"))
+    # An overview annotation at the home level (2), as a GIMP user makes it: the toolbox's patch
+    # is drawn one level finer, whose image it then is alone.
+    gimp = scratch / "gimp"
+    gimp.mkdir()
+    overview = np.zeros((-(-H // 4), -(-W // 4), 4), np.uint8)
+    overview[10:30, 10:60] = (255, 255, 0, 200)
+    Image.fromarray(overview, "RGBA").save(gimp / "level_2.png")
+    assert main(["annotate", "build", str(root / "obj"), "--layer", "ptm", "--gimp",
+                 str(gimp)]) == 0
     token = scratch / "token"
     token.write_text(TOKEN + "\n")
     with lanterna_serve(root, "--authoring-token-file", str(token)) as (url, _):
@@ -217,7 +227,7 @@ def test_strokes_undo_redo_download_and_upload_give_the_served_overlay(
     assert v[2] is True, "the server allows authoring: the button shows"
     viewed = v[5]
     level = viewed["level"]
-    assert level >= 1, "the test wants a level coarser than full resolution"
+    assert level == 1, "twice the home zoom: one level finer than the overview's"
     x, y, w, h, width, height = expected_frame(viewed["region"], level)
     assert (x, y) != (0, 0) and (x + w, y + h) != (W, H), "the patch is part of the canvas"
     canvases = {k: rgba(v[k]) for k in (7, 9, 13, 18, 21, 23, 25, 28, 30)}
@@ -249,7 +259,8 @@ def test_strokes_undo_redo_download_and_upload_give_the_served_overlay(
                  for rows in (slice(0, split), slice(split, None))]
     assert 0 < thickness[0] < thickness[1], thickness
     # the download: its name and pixels
-    assert v[33] == f"{level}_{x}_{y}_{w}_{h}_0_Crack-upper-left.png"
+    name = f"{level}_{x}_{y}_{w}_{h}_1_Crack-upper-left.png"  # on top of the overview's order 0
+    assert v[33] == name
     with Image.open(png) as img:
         assert img.mode == "RGBA"
         assert np.array_equal(np.asarray(img), drawing)
@@ -260,7 +271,7 @@ def test_strokes_undo_redo_download_and_upload_give_the_served_overlay(
     # the upload: the served level image is the drawing in the patch's rectangle, clear elsewhere
     assert "is shown" in v[44]
     store = sorted(p.name for p in (root / "obj.annotations" / "ptm").glob("*.png"))
-    assert store == [f"{level}_{x}_{y}_{w}_{h}_0_Crack-upper-left.png"]
+    assert store == sorted([name, f"2_0_0_{W}_{H}_0_level.png"])
     served_level = overlay_image(url, level)
     assert served_level.shape == (-(-H // s), -(-W // s), 4)
     assert np.array_equal(served_level[y0:y0 + height, x0:x0 + width], drawing)
@@ -268,6 +279,7 @@ def test_strokes_undo_redo_download_and_upload_give_the_served_overlay(
     outside[y0:y0 + height, x0:x0 + width] = 0
     assert not outside.any()
     # the viewer shows it without a reload: the pixels change where the strokes are, only there
+    assert v[5]["available"] is False, "no level-1 overlay before the upload"
     assert v[45]["available"] is True and v[45]["level"] == level
     before, after = frame(v[4]).astype(int), frame(v[46]).astype(int)
     changed = np.abs(after - before).sum(axis=2) > 0
