@@ -30,10 +30,25 @@ export function storeToken(token: string | null): void {
   }
 }
 
-/** Whether the server at `urls` accepts writes (false for a static host, which has no API). */
-export async function allowsAuthoring(urls: AuthoringUrls): Promise<boolean> {
+/** The answers so far, by API URL: the page asks once, whoever asks first. */
+const answers = new Map<string, Promise<boolean>>();
+
+/**
+ * Whether the server at `urls` accepts writes (false for a static host, which has no API); asked
+ * once per page (the presets' save and the Annotate button share the answer).
+ */
+export function allowsAuthoring(urls: AuthoringUrls): Promise<boolean> {
+  let answer = answers.get(urls.api);
+  if (!answer) {
+    answer = askServer(urls.api);
+    answers.set(urls.api, answer);
+  }
+  return answer;
+}
+
+async function askServer(api: string): Promise<boolean> {
   try {
-    const response = await fetch(urls.api, { headers: { Accept: 'application/json' } });
+    const response = await fetch(api, { headers: { Accept: 'application/json' } });
     if (!response.ok) {
       return false;
     }
