@@ -9,7 +9,7 @@ import type { LanternaViewer } from '../api/viewer-api';
 import { LanternaError } from '../errors';
 import { allowsAuthoring, storedToken, storeToken } from '../panel/authoring-token';
 import { authoringUrls, layerUrls } from '../panel/authoring-url';
-import { waitForBuild } from './build-status';
+import { shownText, waitForBuild } from './build-status';
 import { createDrawSurface, type DrawSurface } from './draw-surface';
 import { patchFrame, type PatchFrame } from './patch-frame';
 import { nextOrder, patchFileName } from './patch-name';
@@ -214,6 +214,7 @@ export function createAnnotator(lanterna: Viewer, options: AnnotatorOptions): An
       const id = await postPatch(where, token, meta, await canvasPng(current.canvas));
       posted = true;
       uploaded = true;
+      toolbox.clearTexts();
       storeToken(token);
       toolbox.token.hide();
       if (!forPatch && (t.short || t.long)) {
@@ -227,7 +228,7 @@ export function createAnnotator(lanterna: Viewer, options: AnnotatorOptions): An
       if (done) {
         builds.set(patchLayer, done.build);
         await refresh();
-        toolbox.setStatus(`Uploaded ${id}: build ${done.build} of the overlay is shown.`);
+        toolbox.setStatus(shownText(id, done.build, current.frame.level, lanterna.getOverlayState().level));
       }
     } catch (error) {
       if (error instanceof AuthoringRequestError && error.status === 401) {

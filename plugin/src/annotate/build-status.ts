@@ -74,3 +74,13 @@ export async function waitForBuild(build: number, options: PollOptions): Promise
     await options.sleep();
   }
 }
+
+/**
+ * What the status says once the new build is in the viewer. The first overlay level of a layer
+ * becomes its home level (docs/annotations.md "Levels"), so a patch drawn zoomed in may then show
+ * at another zoom: the text says which way.
+ */
+export function shownText(id: string, build: number, level: number, shown: number): string {
+  const where = shown === level ? 'is shown' : `is served; zoom ${shown < level ? 'out' : 'in'} to see level ${level}`;
+  return `Uploaded ${id}: build ${build} of the overlay ${where}.`;
+}

@@ -42,6 +42,8 @@ export interface Toolbox {
   setTitle(text: string): void;
   /** Show one line of status; `ok` false for an error. */
   setStatus(text: string, ok?: boolean): void;
+  /** Empty the short and long texts (the next patch gets its own). */
+  clearTexts(): void;
 }
 
 function button(name: string, text: string, title: string): HTMLButtonElement {
@@ -165,10 +167,14 @@ export function createToolbox(sendToken: (token: string) => void): Toolbox {
   status.className = 'lanterna-annotate-status';
   status.setAttribute('role', 'status');
   const token = createTokenRow('annotate-send-token', 'Upload', sendToken);
-  element.append(title, row(brushButton, eraserButton), row(...swatches),
+  // The title and the status in a head that stays in sight when the toolbox scrolls (page CSS: sticky).
+  const head = document.createElement('header');
+  head.className = 'lanterna-annotate-head';
+  head.append(title, status);
+  element.append(head, row(brushButton, eraserButton), row(...swatches),
     row(labelled('Size', size), labelled('Opacity', opacity), opacityOut),
     row(buttons.undo, buttons.redo, buttons.clear), texts, token.element,
-    row(buttons.download, buttons.upload, buttons.close), status);
+    row(buttons.download, buttons.upload, buttons.close));
   return {
     element, buttons, token,
     brush: () => ({ tool, color, size: Number(size.value), opacity: Number(opacity.value) / 100 }),
@@ -177,6 +183,10 @@ export function createToolbox(sendToken: (token: string) => void): Toolbox {
       motivation: motivation.value === 'tagging' ? 'tagging' : 'commenting', author: author.value.trim(),
     }),
     setTitle: (text) => { title.textContent = text; },
+    clearTexts() {
+      short.value = '';
+      long.value = '';
+    },
     setStatus(text, ok = true) {
       status.textContent = text;
       status.dataset.ok = String(ok);

@@ -113,6 +113,15 @@ export function wireAnnotateButton(annotator: Annotator, attempt: (action: () =>
     attempt(() => { if (annotator.isActive()) { annotator.stop(); } else { annotator.start(); } });
   });
   annotator.onChange(sync);
+  // The toolbox sits below the toolbar, which wraps onto more rows on narrow screens.
+  const toolbar = byId<HTMLElement>('toolbar');
+  if (toolbar) {
+    const place = (): void => {
+      document.documentElement.style.setProperty('--lanterna-toolbar-bottom', `${toolbar.getBoundingClientRect().bottom}px`);
+    };
+    new ResizeObserver(place).observe(toolbar);
+    place();
+  }
   void annotator.probe().then((allowed) => {
     button.hidden = !allowed;
     button.dataset.checked = 'true';

@@ -1,5 +1,5 @@
 import { describe, expect, it } from 'vitest';
-import { isNewBuild, parseStatus, waitForBuild, type BuildStatus } from '../../../plugin/src/annotate/build-status';
+import { isNewBuild, parseStatus, shownText, waitForBuild, type BuildStatus } from '../../../plugin/src/annotate/build-status';
 
 const doc = (state: string, build: number, error: string | null = null): unknown => ({
   layer: 'ptm', state, served: { build, fingerprint: build ? `f${build}` : null }, patches: 3, error,
@@ -58,5 +58,13 @@ describe('waitForBuild', () => {
       sleep: () => Promise.resolve(), cancelled: () => reads >= 2,
     });
     expect([result, reads]).toEqual([null, 2]);
+  });
+});
+
+describe('shownText', () => {
+  it('says the patch is shown, or which way to zoom to see its level', () => {
+    expect(shownText('1_0_0_8_8_0_patch', 3, 1, 1)).toBe('Uploaded 1_0_0_8_8_0_patch: build 3 of the overlay is shown.');
+    expect(shownText('p', 2, 1, 0)).toBe('Uploaded p: build 2 of the overlay is served; zoom out to see level 1.');
+    expect(shownText('p', 2, 1, 2)).toContain('zoom in to see level 1');
   });
 });
