@@ -221,6 +221,11 @@ def test_strokes_undo_redo_download_and_upload_give_the_served_overlay(
         FRAME,                                                            # 46: after
         {"click": "#zoom-in"},
         PLACED,                                                           # 48
+        evaluate("() => [window.lanterna.getLight(), window.lanterna.getRenderMode()]"),  # 49
+        {"click": "button[name=light-west]"},
+        {"select": "select[name=mode]", "value": "specular"},
+        evaluate("() => [window.lanterna.getLight(), window.lanterna.getRenderMode(), "
+                 "!!document.querySelector('.lanterna-draw-surface')]"),  # 52
     ]
     found = run_page(page(url), steps, tmp_path, VIEW, routes=(), allow_console_errors=["401"])
     v = found["values"]
@@ -292,6 +297,8 @@ def test_strokes_undo_redo_download_and_upload_give_the_served_overlay(
     assert placed["view"] != viewed["view"]
     assert placed["rect"] == pytest.approx(screen_rect(on_screen, placed["view"]), abs=0.01)
     assert placed["rect"][2] == pytest.approx(rect[2] * 1.5, rel=1e-3)
+    # the panel's light and mode still work while annotating
+    assert v[52][0] != v[49][0] and v[49][1] == "color" and v[52][1:] == ["specular", True]
 
 
 def test_without_authoring_there_is_no_annotate_button_and_no_status_reads(
