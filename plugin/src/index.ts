@@ -24,7 +24,7 @@ export { imageGeometry, commonGeometry, type ImageGeometry } from './iiif/image-
 export { LanternaError, attempt } from './errors';
 export {
   ManifestError, MissingRelightServiceError, RelightServiceError, ImageInfoError, MismatchedPlanesError, FetchError,
-  OverlayError,
+  OverlayError, AnnotationPageError,
 } from './iiif/errors';
 export { ShaderError } from './gl/compile';
 export { ptmWeights, relightPtmPixel, BASES, PTM_BASIS_TERMS, type LightBasis } from './math/ptm-basis';
@@ -43,6 +43,9 @@ export { createLensControls, type LensControls } from './panel/lens-controls';
 export { createLightTools } from './panel/light-tools';
 export { createPresetsPanel, type PresetsPanelOptions } from './panel/presets-panel';
 export { createAbout } from './panel/about';
+export {
+  annotationMeta, annotationTitle, createAnnotationList, type AnnotationListViewer,
+} from './panel/annotation-list';
 export type { PanelSection } from './panel/panel-dom';
 export { createHypertext, NO_ANNOTATION_TEXT, type HypertextWidget } from './panel/hypertext';
 export { sanitizeHtml } from './ui/sanitize-html';
@@ -54,6 +57,15 @@ export {
 export { lensHit, LENS_BORDER_PX, type Circle, type LensHit } from './math/lens';
 export { currentLevel, homeLevelOf, type LevelView } from './math/levels';
 export { parseOverlays, OVERLAY_SERVICE_TYPE, OVERLAY_PROFILE, type OverlayLevel } from './iiif/overlays';
+export {
+  parseAnnotationPage, referencedPages, applicationOrder, PATCH_SERVICE_TYPE, PATCH_PROFILE,
+  type PatchAnnotation, type PatchRenderState,
+} from './iiif/annotation-page';
+export { AnnotationSet } from './annotations/annotation-set';
+export {
+  drawPlan, patchRect, outlineRect, levelRect, levelKey, type DrawPlanInput, type PlannedItem, type PlannedLevel,
+  type PlannedPatch, type ViewportRect,
+} from './annotations/draw-plan';
 export type { OverlayState } from './overlay/overlay-controller';
 export {
   PRESETS_PROFILE, PRESETS_TYPE, PresetError, addPreset, emptyLibrary, entryLayer, libraryLayers,
@@ -84,3 +96,10 @@ export { mountViewTools, type ViewTools, type ViewToolsOptions } from './tools/v
 export { attachUrlState, type UrlStateOptions } from './tools/url-state';
 export { createHelpOverlay, type HelpOverlay } from './tools/help-overlay';
 export { createScaleBar, type ScaleBarWidget } from './tools/scale-bar';
+export { createAnnotator, MAX_PIXELS, MAX_SIDE, type Annotator, type AnnotatorOptions } from './annotate/annotator';
+export { patchFrame, destination, frameImageRect, type PatchFrame } from './annotate/patch-frame';
+export { infoSlug, patchFileName, nextOrder } from './annotate/patch-name';
+export { StrokeHistory, type Operation, type Stroke, type StrokePoint, type StrokeTool } from './annotate/stroke-history';
+export { brushWidth } from './annotate/pen-width';
+export { parseStatus, waitForBuild, type BuildStatus } from './annotate/build-status';
+export { AuthoringRequestError, type PatchMeta } from './annotate/patch-upload';

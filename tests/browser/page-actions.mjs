@@ -5,7 +5,8 @@
 //       "alone": n  the first finger lands and moves n steps (of its path) before the others land
 //   {"type": "viewport", "size": [width, height]}  (resize the page, then let the viewer follow)
 //   {"type": "mouse", "from": [x, y], "to": [x, y], "steps": 8, "button": "left"}  (press, drag, release)
-//   {"type": "pen", "from": [x, y], "to": [x, y], "steps": 8}  (a pen drag, CDP pointerType "pen")
+//   {"type": "pen", "from": [x, y], "to": [x, y], "steps": 8, "pressure": 0.5}  (a pen drag, CDP pointerType
+//       "pen"; `pressure` 0–1 while pressed, default none: the browser's 0)
 //   {"type": "wheel", "at": [x, y], "deltaY": -100}
 //   {"type": "click", "selector": "CSS selector"}  (a click, or a tap with touch, on an element of the page)
 //   {"type": "select", "selector": "CSS selector", "value": "…"}  (choose an option of a <select>)
@@ -106,6 +107,7 @@ export async function runGesture(page, cdp, origin, g, touch) {
     const to = at(g.to ?? g.from);
     const pen = (type, p, buttons) => cdp.send('Input.dispatchMouseEvent', {
       type, x: p.x, y: p.y, button: 'left', buttons, clickCount: 1, pointerType: 'pen',
+      ...(g.pressure !== undefined && buttons ? { force: g.pressure } : {}),
     });
     await pen('mousePressed', from, 1);
     for (let k = 1; k <= steps; k++) {

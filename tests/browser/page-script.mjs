@@ -16,6 +16,8 @@
 //   {"drop": "/abs/file", "selector": "CSS selector"}  drop the file on that element (a DataTransfer)
 //   {"download": "CSS selector", "path": "/abs/out"}  click it and save the download it starts
 //   {"key": "Tab"}  press a key
+//   {"gesture": {…}, "on": "CSS selector"}  a gesture of page-actions.mjs (mouse, touch, pen…), x and y in
+//       CSS px of that element (default the viewer element)
 //   {"screenshot": "/abs/out.png"}
 // After the last step the page is left to settle (lanterna.whenFullyLoaded, so that no request is cut
 // off) unless spec "settle" is false.
@@ -26,10 +28,10 @@ import { readFileSync, writeFileSync } from 'node:fs';
 import { basename } from 'node:path';
 import process from 'node:process';
 import { chromium } from 'playwright-core';
-import { CHROMIUM, CHROMIUM_ARGS, installRoutes, watchErrors, withTimeout } from './page-actions.mjs';
+import { CHROMIUM, CHROMIUM_ARGS, installRoutes, runGesture, watchErrors, withTimeout } from './page-actions.mjs';
 
 
-async function runStep(page, step, timeoutMs) {
+async function runStep(page, step, timeoutMs, cdp) {
   if (step.eval !== undefined) {
     return page.evaluate(`(${step.eval})()`);
   }
@@ -61,6 +63,12 @@ async function runStep(page, step, timeoutMs) {
     const [download] = await Promise.all([page.waitForEvent('download'), page.click(step.download)]);
     await download.saveAs(step.path);
     return download.suggestedFilename();
+  } else if (step.gesture !== undefined) {
+    const box = await page.evaluate((sel) => {
+      const r = (sel ? document.querySelector(sel) : window.lanterna.viewer.element).getBoundingClientRect();
+      return { x: r.left, y: r.top };
+    }, step.on ?? null);
+    await runGesture(page, cdp, box, step.gesture, false);
   } else if (step.key !== undefined) {
     await page.keyboard.press(step.key);
   } else if (step.screenshot !== undefined) {
@@ -87,8 +95,10 @@ async function main() {
     const context = await browser.newContext({
       viewport: spec.viewport ?? { width: 1280, height: 800 }, deviceScaleFactor: 1, acceptDownloads: true,
       ...(spec.mobile ? { hasTouch: true, isMobile: true } : {}),
+      ...((spec.steps ?? []).some((st) => st.gesture?.type === 'touch') ? { hasTouch: true } : {}),
     });
     const page = await context.newPage();
+    const cdp = await context.newCDPSession(page);
     watchErrors(page, allowed, pageErrors, consoleErrors);
     page.on('request', (req) => {
       if (record?.test(req.url())) {
@@ -98,7 +108,7 @@ async function main() {
     await installRoutes(page, spec.routes ?? []);
     await withTimeout(page.goto(spec.url, { waitUntil: 'load' }), timeoutMs, `loading ${spec.url}`);
     for (const step of spec.steps ?? []) {
-      values.push(await withTimeout(runStep(page, step, timeoutMs), timeoutMs, JSON.stringify(step).slice(0, 200)));
+      values.push(await withTimeout(runStep(page, step, timeoutMs, cdp), timeoutMs, JSON.stringify(step).slice(0, 200)));
       if (pageErrors.length > 0) {
         throw new Error(pageErrors.join('\n'));
       }

@@ -6,6 +6,7 @@
 import type OpenSeadragon from 'openseadragon';
 import type { PixelData } from '../drawer/read-pixels';
 import { LanternaError } from '../errors';
+import type { PatchAnnotation } from '../iiif/annotation-page';
 import type { LoadedLayer } from '../iiif/load';
 import type { ManifestInfo } from '../iiif/manifest';
 import type { LayerType } from '../iiif/relight-service';
@@ -161,8 +162,8 @@ export interface LanternaViewer extends ViewStateApi {
   /** Ask again for every tile that failed to load (they are retried automatically twice, after 4 and 8 s). */
   retryFailedTiles(): void;
   /**
-   * Call `listener` after any change of light, layer, mode, parameters, lens, overlays, level or
-   * notices; returns an unsubscribe function.
+   * Call `listener` after any change of light, layer, mode, parameters, lens, overlays, level,
+   * notices or annotations (a hidden patch, a refresh); returns an unsubscribe function.
    */
   onChange(listener: () => void): () => void;
   /** Fit the rectangle (x, y, w, h) in image pixels into the viewer, immediately. */
@@ -176,6 +177,32 @@ export interface LanternaViewer extends ViewStateApi {
    * or null before `ready`.
    */
   getImageRegion(): [number, number, number, number] | null;
+  /**
+   * A layer's individual annotations (its patches, read from the W3C annotation page the manifest
+   * references), in application order; the active layer's by default (`docs/annotations.md`).
+   */
+  getAnnotations(layerId?: string): readonly PatchAnnotation[];
+  /**
+   * Hide a patch (or show it again): while some patch of a level is hidden, that level is drawn
+   * from its visible patches' own images instead of its pyramid. Throws a `LanternaError` for an
+   * unknown id (the active layer's patches are looked up first).
+   */
+  setAnnotationHidden(id: string, hidden: boolean): void;
+  /** Whether a patch is hidden (false for an unknown id). */
+  isAnnotationHidden(id: string): boolean;
+  /** Outline a patch's rectangle over the view (null: remove the outline). */
+  highlightAnnotation(id: string | null): void;
+  /**
+   * Fit the view to a patch's rectangle and restore the render state it was drawn under (layer,
+   * mode, parameters, light); resolves once done (rejects as `setState` does).
+   */
+  focusAnnotation(id: string): Promise<void>;
+  /**
+   * Fetch the manifest again (`cache: 'no-cache'`) with its annotation pages, replace every layer's
+   * overlay levels and patches and swap the overlay items, without a page reload; resolves once the
+   * new state is in place, then the {@link LanternaViewer.onChange} listeners are called.
+   */
+  refreshAnnotations(): Promise<void>;
   /** The preset library (the one given, else the manifest's, else an empty one). */
   getPresetLibrary(): PresetLibrary;
   /**

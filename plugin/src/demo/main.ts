@@ -7,14 +7,15 @@
  * (switching layers, the lens, an unknown layer or mode in the URL) show as dismissible notices.
  */
 import {
-  createAbout, createControls, createLensControls, createLightTools, createPresetsPanel, createViewer,
+  createAbout, createAnnotationList, createAnnotator, createControls, createLensControls, createLightTools,
+  createPresetsPanel, createViewer,
   LanternaError, MODE_LABELS, attempt as attemptReporting, createMeasurement, type MeasurementWidget, UnknownLayerError, isRenderMode, mountViewTools,
-  type LanternaViewer,
+  type Annotator, type LanternaViewer,
 } from '../index';
 import { describeOpenError, showErrorBox } from './error-page';
 import { createLayout } from './layout';
 import { trackLoading } from './loading';
-import { hideToolbarButtons, wireMeasureButton, wireToolbar } from './toolbar';
+import { hideToolbarButtons, wireAnnotateButton, wireMeasureButton, wireToolbar } from './toolbar';
 
 declare global {
   interface Window {
@@ -66,16 +67,18 @@ function applyUrlMode(lanterna: LanternaViewer, mode: string): void {
     MODE_LABELS[lanterna.getRenderMode()]} instead.`));
 }
 
-/** Build the panel's sections and the About box. */
-function buildPanel(lanterna: LanternaViewer, panel: HTMLElement, manifest: string): void {
+/** Build the panel's sections and the About box; the Annotate tool (its toolbox floats beside the panel). */
+function buildPanel(lanterna: LanternaViewer, panel: HTMLElement, manifest: string): Annotator {
   const report = (error: unknown): void => { lanterna.reportError(error); };
   createControls(lanterna, panel, report);
   createLightTools(lanterna, panel);
   createLensControls(lanterna, panel, report);
   createPresetsPanel(lanterna, panel, { manifestUrl: manifest, onError: report });
+  createAnnotationList(lanterna, panel, report);
   if (lanterna.manifest) {
     createAbout(lanterna.manifest, panel);
   }
+  return createAnnotator(lanterna, { manifestUrl: manifest, container: panel.parentElement ?? document.body });
 }
 
 /** Open the viewer and wire the page's controls to it; `fallback` is the notice to show once ready. */
@@ -120,8 +123,9 @@ function open(page: PageOptions, fallback: string | null = null): void {
     }
     measurement.setEnabled(page.measure);
     if (panel && toolbar && toggle) {
-      buildPanel(lanterna, panel, page.manifest);
+      const annotator = buildPanel(lanterna, panel, page.manifest);
       wireToolbar(lanterna, createLayout(lanterna, panel, toolbar, toggle), attempt);
+      wireAnnotateButton(annotator, attempt);
       wireMeasureButton(lanterna, measurement);
     }
     // View tools (issue #13): the URL hash, Snapshot and ? buttons, scale bar, help overlay, canvas keys.

@@ -1,9 +1,10 @@
 /**
  * The page's toolbar: what a drag does, Home (into the free area), zoom in and out, the lens, the
- * annotations (disabled, saying where they are, on layers without any), and the panel toggle. The
+ * annotations (disabled, saying where they are, on layers without any), Annotate (when the server
+ * takes patches), Measure, and the panel toggle. The
  * `#tools` container is left for page widgets mounted later.
  */
-import type { LanternaViewer, MeasurementWidget } from '../index';
+import type { Annotator, LanternaViewer, MeasurementWidget } from '../index';
 import type { Layout } from './layout';
 
 /** Zoom factor of the zoom buttons. */
@@ -95,5 +96,35 @@ export function wireMeasureButton(lanterna: LanternaViewer, measurement: Measure
     sync();
   });
   lanterna.onChange(sync);
+  sync();
+}
+
+/**
+ * The Annotate button: shown once the server says it takes patches (`GET /api/` → authoring true),
+ * it starts a patch on the current view and stops it.
+ */
+export function wireAnnotateButton(annotator: Annotator, attempt: (action: () => unknown) => void): void {
+  const button = byId('annotate');
+  if (!button) {
+    return;
+  }
+  const sync = (): void => { button.setAttribute('aria-pressed', String(annotator.isActive())); };
+  button.addEventListener('click', () => {
+    attempt(() => { if (annotator.isActive()) { annotator.stop(); } else { annotator.start(); } });
+  });
+  annotator.onChange(sync);
+  // The toolbox sits below the toolbar, which wraps onto more rows on narrow screens.
+  const toolbar = byId<HTMLElement>('toolbar');
+  if (toolbar) {
+    const place = (): void => {
+      document.documentElement.style.setProperty('--lanterna-toolbar-bottom', `${toolbar.getBoundingClientRect().bottom}px`);
+    };
+    new ResizeObserver(place).observe(toolbar);
+    place();
+  }
+  void annotator.probe().then((allowed) => {
+    button.hidden = !allowed;
+    button.dataset.checked = 'true';
+  });
   sync();
 }

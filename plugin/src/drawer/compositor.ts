@@ -21,8 +21,11 @@ export interface DrawerLens {
 export interface Compositor {
   /** Draw `item` (a lens TiledImage of `layer`) inside the lens only. */
   setLensItem(item: object, layer: RelightLayer): void;
-  /** Draw `item` (a plain RGBA overlay level image) over the layers, premultiplied source-over. */
-  setOverlayItem(item: object): void;
+  /**
+   * Draw `item` (a plain RGBA overlay image: a level, or one patch) over the layers, premultiplied
+   * source-over; overlay items are drawn in increasing `order` (ties: world order).
+   */
+  setOverlayItem(item: object, order?: number): void;
   /** The lens, or null when it is off. */
   setLens(lens: DrawerLens | null): void;
   /** Where overlays are drawn relative to the lens (ignored while the lens is off). */

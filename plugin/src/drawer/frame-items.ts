@@ -47,12 +47,14 @@ export interface FrameItems<T> {
 
 /**
  * Sort the visible items with tiles by role (`roleOf`: the lens layer or an overlay, else a base
- * layer); items without a resolved layer (other than overlays) are not drawn.
+ * layer); items without a resolved layer (other than overlays) are not drawn. Overlays come in
+ * increasing `orderOf` (a stable sort: ties keep the world order).
  */
 export function sortItems<I extends ItemLike, T>(entries: readonly { item: I; tiles: T[] }[], view: Mat3,
-  roleOf: (item: I) => 'lens' | 'overlay' | undefined, layerOf: (item: I) => ResolvedLayer | undefined): FrameItems<T> {
+  roleOf: (item: I) => 'lens' | 'overlay' | undefined, layerOf: (item: I) => ResolvedLayer | undefined,
+  orderOf: (item: I) => number = () => 0): FrameItems<T> {
   const layers: FrameLayer<T>[] = [];
-  const overlays: FrameItem<T>[] = [];
+  const overlays: (FrameItem<T> & { order: number })[] = [];
   let lensLayer: FrameLayer<T> | null = null;
   for (const { item, tiles } of entries) {
     if (item.getOpacity() === 0 || tiles.length === 0) {
@@ -62,12 +64,13 @@ export function sortItems<I extends ItemLike, T>(entries: readonly { item: I; ti
     const layer = layerOf(item);
     const matrix = multiply(view, itemRotation(item));
     if (role === 'overlay') {
-      overlays.push({ tiles, matrix });
+      overlays.push({ tiles, matrix, order: orderOf(item) });
     } else if (layer && role === 'lens') {
       lensLayer = { tiles, matrix, layer };
     } else if (layer) {
       layers.push({ tiles, matrix, layer });
     }
   }
+  overlays.sort((a, b) => a.order - b.order);
   return { layers, lensLayer, overlays };
 }

@@ -82,6 +82,7 @@ export class RelightDrawer extends OpenSeadragon.DrawerBase implements Composito
   declare private layers: WeakMap<object, ResolvedLayer>;
   declare private resolved: WeakMap<RelightLayer, ResolvedLayer>;
   declare private roles: WeakMap<object, 'lens' | 'overlay'>;
+  declare private overlayOrder: WeakMap<object, number>;
   declare private lens: DrawerLens | null;
   declare private overlayDisplay: AnnotationDisplay;
   declare private light: Light;
@@ -100,6 +101,7 @@ export class RelightDrawer extends OpenSeadragon.DrawerBase implements Composito
     this.layers = new WeakMap();
     this.resolved = new WeakMap();
     this.roles = new WeakMap();
+    this.overlayOrder = new WeakMap();
     this.lens = null;
     this.overlayDisplay = 'everywhere';
     this.light = OVERHEAD_LIGHT;
@@ -182,9 +184,10 @@ export class RelightDrawer extends OpenSeadragon.DrawerBase implements Composito
     this.settings++;
   }
 
-  /** Draw `tiledImage` (a one-plane bundle of RGBA with straight alpha) as an annotation overlay. */
-  setOverlayItem(tiledImage: object): void {
+  /** Draw `tiledImage` (one plane of straight-alpha RGBA) as an overlay, in increasing `order`. */
+  setOverlayItem(tiledImage: object, order = 0): void {
     this.roles.set(tiledImage, 'overlay');
+    this.overlayOrder.set(tiledImage, order);
     this.settings++;
   }
 
@@ -391,7 +394,7 @@ export class RelightDrawer extends OpenSeadragon.DrawerBase implements Composito
     this.resizeIfNeeded();
     const view = this.currentViewMatrix();
     const { layers, lensLayer, overlays } = sortItems(this.lastFrame, view, (item) => this.roles.get(item),
-      (item) => this.layers.get(item));
+      (item) => this.layers.get(item), (item) => this.overlayOrder.get(item) ?? 0);
     const lens = this.lens;
     try {
       this.frames.render({

@@ -33,3 +33,6 @@ export class FetchError extends LanternaError {
 
 /** A `LanternaOverlayLevel` annotation breaks the contract (`docs/annotations.md`). */
 export class OverlayError extends ManifestError {}
+
+/** A layer's annotation page (`docs/annotations.md`, "Individual annotations") breaks the contract. */
+export class AnnotationPageError extends ManifestError {}

@@ -1,15 +1,17 @@
 /**
- * The overlay TiledImages of a viewer (`docs/annotations.md`, "Viewer"): one per overlay level
- * image, made on first use, stretched over the canvas like the layers. Only the active layer's
- * level matching the current level is visible; the others have opacity 0, so they load nothing.
+ * The overlay TiledImages of a viewer (`docs/annotations.md`, "Viewer"): the items of a draw plan
+ * (`annotations/draw-plan.ts`) — a level's pyramid, or the visible patches of a level drawn from
+ * their own images — made on first use and placed in viewport units. Only the planned items are
+ * visible; the others have opacity 0, so they load nothing. Items of an overlay that was rebuilt
+ * are removed with {@link OverlayController.retire}.
  */
 import type OpenSeadragon from 'openseadragon';
+import type { PlannedItem, PlannedLevel, PlannedPatch } from '../annotations/draw-plan';
+import { LanternaError } from '../errors';
 import { imageInfo, type InfoCache } from '../iiif/load';
-import type { ManifestLayer } from '../iiif/manifest';
-import { overlayAt, type OverlayLevel } from '../iiif/overlays';
 import { wholeLevelTiling } from '../iiif/whole-levels';
 import { addBundleItem } from '../tiles/add-item';
-import { overlayItemWidth } from './overlay-state';
+import { PatchTileSource } from './patch-source';
 
 export { overlayItemWidth, overlayState, type OverlayState } from './overlay-state';
 
@@ -21,10 +23,18 @@ export interface OverlayControllerOptions {
   readonly infoCache: InfoCache;
   /** Longest side (px) up to which an overlay level image loads by whole levels; 0: tiles always. */
   readonly wholeLevelMaxSide: number;
-  /** Called once per new overlay item (e.g. to tell the drawer how to draw it). */
-  register(item: OpenSeadragon.TiledImage, level: OverlayLevel): void;
+  /**
+   * Called for every new overlay item and whenever its drawing order changes (e.g. to tell the
+   * drawer how to draw it: overlay items are drawn in increasing `order`).
+   */
+  register(item: OpenSeadragon.TiledImage, order: number): void;
   /** Called when an overlay item could not be opened. */
   onError(error: unknown): void;
+}
+
+interface Opened {
+  readonly item: OpenSeadragon.TiledImage;
+  order: number;
 }
 
 /** Creates and shows overlay items. */
@@ -32,74 +42,85 @@ export class OverlayController {
   readonly #viewer: OpenSeadragon.Viewer;
   readonly #options: OverlayControllerOptions;
   readonly #items = new Map<string, Promise<OpenSeadragon.TiledImage>>();
-  readonly #opened = new Map<string, OpenSeadragon.TiledImage>();
-  #wanted = '';
+  readonly #opened = new Map<string, Opened>();
+  #wanted: readonly PlannedItem[] = [];
+  #wantedKeys = new Set<string>();
 
   constructor(viewer: OpenSeadragon.Viewer, options: OverlayControllerOptions) {
     this.#viewer = viewer;
     this.#options = options;
   }
 
-  /** The key of the item shown now ('' = none). */
-  get shownKey(): string {
-    return this.#wanted;
-  }
-
-  /**
-   * Show `layer`'s overlay for `level` (nothing if it has none there, or if `visible` is false);
-   * hide every other overlay item.
-   */
-  show(layer: ManifestLayer | null, level: number, visible: boolean): void {
-    const ov = visible && layer ? overlayAt(layer.overlays, level) : null;
-    const key = ov ? keyOf(ov) : '';
-    if (key === this.#wanted) {
+  /** Show the plan's items (opening those not open yet) and hide every other overlay item. */
+  show(plan: readonly PlannedItem[]): void {
+    const keys = new Set(plan.map((p) => p.key));
+    if (keys.size === this.#wantedKeys.size && [...keys].every((k) => this.#wantedKeys.has(k))
+      && plan.every((p) => (this.#opened.get(p.key)?.order ?? p.order) === p.order)) {
       return;
     }
-    this.#wanted = key;
-    for (const [k, item] of this.#opened) {
-      if (k !== key) {
-        item.setOpacity(0);
+    this.#wanted = plan;
+    this.#wantedKeys = keys;
+    for (const [k, opened] of this.#opened) {
+      if (!keys.has(k)) {
+        opened.item.setOpacity(0);
       }
     }
-    if (!ov || !layer) {
-      return;
+    for (const planned of plan) {
+      this.#itemOf(planned).then((item) => {
+        if (this.#wantedKeys.has(planned.key)) {
+          this.#order(planned);
+          item.setOpacity(1);
+        }
+      }).catch((error: unknown) => { this.#options.onError(error); });
     }
-    this.#itemOf(ov, layer.layer.width).then((item) => {
-      if (this.#wanted === key) {
-        item.setOpacity(1);
-      }
-    }).catch((error: unknown) => { this.#options.onError(error); });
   }
 
-  /** True while the wanted overlay item is still being opened. */
+  /** Open the plan's items (invisible, so they load no tiles yet); resolves once all are open. */
+  async prepare(plan: readonly PlannedItem[]): Promise<void> {
+    await Promise.all(plan.map((p) => this.#itemOf(p)));
+  }
+
+  /** Remove the items that `keep` rejects and that are not shown now (those of a rebuilt overlay). */
+  retire(keep: (key: string) => boolean): void {
+    for (const [key, opened] of [...this.#opened]) {
+      if (!keep(key) && !this.#wantedKeys.has(key)) {
+        this.#opened.delete(key);
+        this.#items.delete(key);
+        this.#viewer.world.removeItem(opened.item);
+      }
+    }
+  }
+
+  /** True while a wanted overlay item is still being opened. */
   isBusy(): boolean {
-    return this.#wanted !== '' && !this.#opened.has(this.#wanted) && this.#items.has(this.#wanted);
+    return this.#wanted.some((p) => !this.#opened.has(p.key) && this.#items.has(p.key));
   }
 
-  /** The TiledImage shown now, if it is open. */
-  shownItem(): OpenSeadragon.TiledImage | null {
-    return this.#opened.get(this.#wanted) ?? null;
+  /** The keys of the items open now (shown or not). */
+  openKeys(): string[] {
+    return [...this.#opened.keys()];
   }
 
-  #itemOf(level: OverlayLevel, canvasWidth: number): Promise<OpenSeadragon.TiledImage> {
-    const key = keyOf(level);
+  #order(planned: PlannedItem): void {
+    const opened = this.#opened.get(planned.key);
+    if (opened && opened.order !== planned.order) {
+      opened.order = planned.order;
+      this.#options.register(opened.item, planned.order);
+    }
+  }
+
+  #itemOf(planned: PlannedItem): Promise<OpenSeadragon.TiledImage> {
+    const key = planned.key;
     let pending = this.#items.get(key);
     if (!pending) {
       pending = (async () => {
-        const { info, geometry } = await imageInfo(level.serviceId, level.embedded, this.#options.fetchInit,
-          this.#options.infoCache);
-        const whole = wholeLevelTiling([info], geometry, this.#options.wholeLevelMaxSide);
-        const item = await addBundleItem(this.#viewer, {
-          infos: whole?.infos ?? [info],
-          geometry: whole?.geometry ?? geometry,
-          cutoffLevel: whole?.cutoffLevel,
-          formats: ['png'],
-          width: overlayItemWidth(level, canvasWidth),
-          opacity: 0,
-          what: `overlay level ${level.level} of layer ${level.layer}`,
-        });
-        this.#options.register(item, level);
-        this.#opened.set(key, item);
+        const item = planned.kind === 'level' ? await this.#levelItem(planned) : await this.#patchItem(planned);
+        if (this.#items.get(key) !== pending) {
+          this.#viewer.world.removeItem(item); // retired while it opened
+          return item;
+        }
+        this.#options.register(item, planned.order);
+        this.#opened.set(key, { item, order: planned.order });
         return item;
       })();
       this.#items.set(key, pending);
@@ -107,8 +128,39 @@ export class OverlayController {
     }
     return pending;
   }
-}
 
-function keyOf(level: OverlayLevel): string {
-  return `${level.layer}#${level.level}`;
+  async #levelItem({ level, rect }: PlannedLevel): Promise<OpenSeadragon.TiledImage> {
+    const { info, geometry } = await imageInfo(level.serviceId, level.embedded, this.#options.fetchInit,
+      this.#options.infoCache);
+    const whole = wholeLevelTiling([info], geometry, this.#options.wholeLevelMaxSide);
+    return addBundleItem(this.#viewer, {
+      infos: whole?.infos ?? [info],
+      geometry: whole?.geometry ?? geometry,
+      cutoffLevel: whole?.cutoffLevel,
+      formats: ['png'],
+      width: rect.width,
+      opacity: 0,
+      what: `overlay level ${level.level} of layer ${level.layer}`,
+    });
+  }
+
+  #patchItem({ patch, rect }: PlannedPatch): Promise<OpenSeadragon.TiledImage> {
+    // The image of a patch id changes when it is replaced: its `modified` time keeps HTTP caches apart.
+    const url = patch.modified ? `${patch.imageUrl}?v=${encodeURIComponent(patch.modified)}` : patch.imageUrl;
+    const source = new PatchTileSource(url, patch.width, patch.height);
+    return new Promise((resolve, reject) => {
+      this.#viewer.addTiledImage({
+        tileSource: source as unknown as OpenSeadragon.TileSource,
+        x: rect.x,
+        y: rect.y,
+        width: rect.width,
+        opacity: 0,
+        success: (event: { item: OpenSeadragon.TiledImage }) => { resolve(event.item); },
+        error: (event: { message?: string }) => {
+          reject(new LanternaError(`cannot open patch ${patch.id} of layer ${patch.layer}: `
+            + `${event.message ?? 'unknown error'}`));
+        },
+      } as unknown as Parameters<OpenSeadragon.Viewer['addTiledImage']>[0]);
+    });
+  }
 }

@@ -6,10 +6,8 @@
  */
 import type { LanternaViewer } from '../api/viewer-api';
 import { serializeLibrary } from '../presets/library';
-import { authoringUrls, saveErrorText, type AuthoringUrls } from './authoring-url';
-
-/** Where the token is kept for the browser tab's session. */
-export const TOKEN_KEY = 'lanterna.authoringToken';
+import { allowsAuthoring, createTokenRow, storedToken, storeToken } from './authoring-token';
+import { authoringUrls, saveErrorText } from './authoring-url';
 
 /** The save control: its element (hidden when the server does not allow authoring). */
 export interface DatasetSave {
@@ -19,39 +17,6 @@ export interface DatasetSave {
    * `data-checked` is then "true".
    */
   probe(): void;
-}
-
-async function allowsAuthoring(urls: AuthoringUrls): Promise<boolean> {
-  try {
-    const response = await fetch(urls.api, { headers: { Accept: 'application/json' } });
-    if (!response.ok) {
-      return false;
-    }
-    const doc: unknown = await response.json();
-    return typeof doc === 'object' && doc !== null && 'authoring' in doc && doc.authoring === true;
-  } catch {
-    return false; // a static host: no API
-  }
-}
-
-function storedToken(): string {
-  try {
-    return sessionStorage.getItem(TOKEN_KEY) ?? '';
-  } catch {
-    return '';
-  }
-}
-
-function storeToken(token: string | null): void {
-  try {
-    if (token === null) {
-      sessionStorage.removeItem(TOKEN_KEY);
-    } else {
-      sessionStorage.setItem(TOKEN_KEY, token);
-    }
-  } catch {
-    // storage off: the token is asked each time
-  }
 }
 
 /**
@@ -66,18 +31,6 @@ export function createDatasetSave(lanterna: Pick<LanternaViewer, 'getPresetLibra
   button.type = 'button';
   button.name = 'presets-save-dataset';
   button.textContent = 'Save to dataset';
-  const tokenRow = document.createElement('div');
-  tokenRow.className = 'lanterna-token-row';
-  tokenRow.hidden = true;
-  const token = document.createElement('input');
-  Object.assign(token, { type: 'password', name: 'authoring-token', autocomplete: 'off', placeholder: 'Authoring token' });
-  token.setAttribute('aria-label', 'Authoring token');
-  const send = document.createElement('button');
-  send.type = 'button';
-  send.name = 'presets-send-token';
-  send.textContent = 'Save';
-  tokenRow.append(token, send);
-  element.append(button, tokenRow);
   const urls = authoringUrls(manifestUrl);
   if (urls) {
     button.title = `Write this library into the dataset "${urls.name}" on the server`;
@@ -96,7 +49,7 @@ export function createDatasetSave(lanterna: Pick<LanternaViewer, 'getPresetLibra
       const body = await response.text();
       if (response.ok) {
         storeToken(key);
-        tokenRow.hidden = true;
+        tokenRow.hide();
         let count = lanterna.getPresetLibrary().base.length + lanterna.getPresetLibrary().lens.length;
         try {
           const doc = JSON.parse(body) as { presets?: unknown };
@@ -109,9 +62,7 @@ export function createDatasetSave(lanterna: Pick<LanternaViewer, 'getPresetLibra
       }
       if (response.status === 401) {
         storeToken(null);
-        tokenRow.hidden = false;
-        token.value = '';
-        token.focus();
+        tokenRow.ask();
       }
       status(saveErrorText(response.status, body), false);
     } catch (error) {
@@ -125,22 +76,11 @@ export function createDatasetSave(lanterna: Pick<LanternaViewer, 'getPresetLibra
     if (key) {
       void save(key);
     } else {
-      tokenRow.hidden = false;
-      token.focus();
+      tokenRow.ask();
     }
   });
-  const sendToken = (): void => {
-    if (token.value) {
-      void save(token.value);
-    }
-  };
-  send.addEventListener('click', sendToken);
-  token.addEventListener('keydown', (e) => {
-    if (e.key === 'Enter') {
-      e.preventDefault();
-      sendToken();
-    }
-  });
+  const tokenRow = createTokenRow('presets-send-token', 'Save', (key) => { void save(key); });
+  element.append(button, tokenRow.element);
   let probed = false;
   const probe = (): void => {
     if (probed) {

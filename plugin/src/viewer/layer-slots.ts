@@ -6,6 +6,7 @@ import OpenSeadragon from 'openseadragon';
 import { UnknownLayerError, type LayerInfo } from '../api/viewer-api';
 import { loadLayer, type InfoCache, type LoadedLayer } from '../iiif/load';
 import type { ManifestLayer } from '../iiif/manifest';
+import type { OverlayLevel } from '../iiif/overlays';
 import type { RelightLayer } from '../iiif/relight-service';
 import type { ImageGeometry } from '../iiif/image-info';
 import { wholeLevelTiling, type WholeLevelView } from '../iiif/whole-levels';
@@ -17,7 +18,8 @@ import { minPixelRatioOf } from './osd-viewer';
 
 /** One manifest layer and what has been opened of it. */
 export interface LayerSlot {
-  readonly info: ManifestLayer;
+  /** Replaced (with new overlay levels) by {@link LayerSlots.setOverlays}. */
+  info: ManifestLayer;
   /** The layer's kind, looked up once when the slot is added. */
   readonly kind: LayerKind;
   loaded?: LoadedLayer;
@@ -52,6 +54,17 @@ export class LayerSlots {
   add(layers: readonly ManifestLayer[]): void {
     for (const info of layers) {
       this.#slots.set(info.id, { info, kind: layerKindOf(info.layer) });
+    }
+  }
+
+  /** Replace every layer's overlay levels (those of a rebuilt overlay); a layer not in `overlays` has none. */
+  setOverlays(overlays: ReadonlyMap<string, readonly OverlayLevel[]>): void {
+    for (const slot of this.#slots.values()) {
+      const levels = overlays.get(slot.info.id) ?? [];
+      slot.info = { ...slot.info, overlays: levels };
+      if (slot.loaded) {
+        slot.loaded = { ...slot.loaded, overlays: levels };
+      }
     }
   }
 

@@ -3,6 +3,8 @@
  * {@link OverlayController}) and the hypertext widget that shows the current level's texts.
  */
 import type OpenSeadragon from 'openseadragon';
+import { drawPlan, type PlannedItem } from '../annotations/draw-plan';
+import type { PatchAnnotation } from '../iiif/annotation-page';
 import type { InfoCache } from '../iiif/load';
 import type { ManifestLayer } from '../iiif/manifest';
 import { OverlayController, overlayState, type OverlayState } from '../overlay/overlay-controller';
@@ -20,8 +22,8 @@ export interface OverlayWiringOptions {
   readonly infoCache: InfoCache;
   /** Longest side (px) up to which an overlay level image loads by whole levels; 0: tiles always. */
   readonly wholeLevelMaxSide: number;
-  /** Called once per new overlay item (e.g. to tell the drawer how to draw it). */
-  register(item: OpenSeadragon.TiledImage): void;
+  /** Called for every new overlay item and when its drawing order changes (to tell the drawer). */
+  register(item: OpenSeadragon.TiledImage, order: number): void;
   /** Called when an overlay item could not be opened. */
   onError(error: unknown): void;
 }
@@ -39,7 +41,7 @@ export class OverlayWiring {
       fetchInit: options.fetchInit,
       infoCache: options.infoCache,
       wholeLevelMaxSide: options.wholeLevelMaxSide,
-      register: (item) => { options.register(item); },
+      register: (item, order) => { options.register(item, order); },
       onError: (error) => { options.onError(error); },
     });
     this.#hypertext = options.hypertext ? createHypertext(viewer.element) : null;
@@ -66,9 +68,23 @@ export class OverlayWiring {
     return this.#items.isBusy();
   }
 
-  /** Show `layer`'s overlay for `level` (if visible), hiding the others. */
-  show(layer: ManifestLayer, level: number): void {
-    this.#items.show(layer, level, this.#visible);
+  /**
+   * Show `layer`'s overlay for `level` (if visible), hiding the others: its pyramid, or its visible
+   * patches when some of that level are `hidden` (`annotations/draw-plan.ts`).
+   */
+  show(layer: ManifestLayer, level: number, patches: readonly PatchAnnotation[], hidden: ReadonlySet<string>): void {
+    this.#items.show(this.#visible ? this.plan(layer, level, patches, hidden) : []);
+  }
+
+  /** What {@link OverlayWiring.show} draws (when overlays are visible). */
+  plan(layer: ManifestLayer, level: number, patches: readonly PatchAnnotation[],
+    hidden: ReadonlySet<string>): PlannedItem[] {
+    return drawPlan({ levels: layer.overlays, patches, hidden, level, canvasWidth: layer.layer.width });
+  }
+
+  /** Remove the overlay items not shown now (after the overlays were rebuilt: their ids changed). */
+  retireHidden(): void {
+    this.#items.retire(() => false);
   }
 
   /** Bring the hypertext widget in line with `layer` at `level`; true when the overlay state changed. */

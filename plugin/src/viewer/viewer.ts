@@ -23,6 +23,7 @@ import { DEFAULT_RENDER_PARAMS, mergeParams, type RenderParams } from '../render
 import { RelightDrawer } from '../drawer/relight-drawer';
 import { attachInteraction, type DragMode } from '../ui/interaction';
 import { createLightWidget, type LightWidget } from '../ui/light-widget';
+import { AnnotationWiring, fetchAnnotations, fetchPatches, focusPatch } from './annotation-wiring';
 import { whenFullyLoaded } from './fully-loaded';
 import { LayerSlots, levelOf, type LayerSlot } from './layer-slots';
 import { LensWiring } from './lens-wiring';
@@ -134,9 +135,12 @@ export function createViewer(options: CreateViewerOptions): LanternaViewer {
     fetchInit: options.fetchInit,
     infoCache,
     wholeLevelMaxSide,
-    register: (item) => { drawer().setOverlayItem(item); },
+    register: (item, order) => { drawer().setOverlayItem(item, order); },
     onError: reportError,
   });
+  const annotations = new AnnotationWiring(viewer);
+  const canvasWidth = (): number => manifest?.layer.width ?? 1;
+  const activeId = (): string => active?.info.id ?? '';
 
   /** Bring overlays, hypertext and the lens clip in line with the view (cheap; called every frame). */
   const sync = (): void => {
@@ -144,7 +148,7 @@ export function createViewer(options: CreateViewerOptions): LanternaViewer {
       return;
     }
     const lv = levelOf(viewer, active);
-    overlays.show(active.info, lv);
+    overlays.show(active.info, lv, annotations.set.list(active.info.id), annotations.set.hidden(active.info.id));
     lens.updateClip();
     if (overlays.sync(active.info, lv)) {
       notify();
@@ -173,19 +177,27 @@ export function createViewer(options: CreateViewerOptions): LanternaViewer {
     changed();
   };
 
+  let pageError: unknown = null;
   const ready = (async () => {
-    const whole = parseManifest(await fetchJson(options.manifest, options.fetchInit));
+    const doc = await fetchJson(options.manifest, options.fetchInit);
+    const whole = parseManifest(doc);
     const opened = await openPresetLibrary(whole, options.presets, options.manifest, options.fetchInit);
     library = opened.library;
     const parsed = selectLayers(whole, options.layers, library);
     manifest = parsed;
     sizeTileCache(viewer, Math.max(...parsed.layers.map((l) => l.layer.planes.length)), options.osd);
     slots.add(parsed.layers);
+    // A page that cannot be read leaves the list empty, with a notice; the overlays still show.
+    const patches = await fetchPatches(doc, parsed.layers.map((l) => l.id), options.fetchInit)
+      .catch((error: unknown) => { pageError = error; return []; });
+    annotations.set.replace(patches);
     const firstEntry = options.layers === 'presets' ? library.base[0] : undefined;
     const first = options.layer ?? (firstEntry ? entryLayer(library, firstEntry) : undefined);
     await activate(slots.require(first ?? parsed.layers[0]?.id ?? ''));
-    if (opened.error !== null) {
-      reportError(opened.error);
+    for (const error of [opened.error, pageError]) {
+      if (error !== null) {
+        reportError(error);
+      }
     }
     applyLight(light);
   })().catch((error: unknown) => {
@@ -202,6 +214,22 @@ export function createViewer(options: CreateViewerOptions): LanternaViewer {
       throw new LanternaError('the layer is not open yet (await ready)');
     }
     return active.tiledImage;
+  };
+
+  /** Fetch the manifest and annotation pages again and show the rebuilt overlays (no page reload). */
+  const refreshAnnotations = async (): Promise<void> => {
+    await ready;
+    const next = await fetchAnnotations(options.manifest, slots.list().map((l) => l.id), options.fetchInit);
+    if (destroyed || !manifest) {
+      return;
+    }
+    slots.setOverlays(next.overlays);
+    manifest = { ...manifest, layers: manifest.layers.map((l) => ({ ...l, overlays: next.overlays.get(l.id) ?? [] })) };
+    annotations.replace(next.patches, canvasWidth());
+    overlays.invalidate();
+    sync();
+    overlays.retireHidden(); // the previous build's items (other levels, other ids)
+    changed();
   };
 
   const api: LanternaViewer = {
@@ -289,6 +317,22 @@ export function createViewer(options: CreateViewerOptions): LanternaViewer {
       const r = (v: number): number => Math.round(v * 100) / 100;
       return x1 > x0 && y1 > y0 ? [r(x0), r(y0), r(x1 - x0), r(y1 - y0)] : null;
     },
+    getAnnotations: (layerId?: string) => annotations.set.list(layerId ?? activeId()),
+    setAnnotationHidden(id: string, hidden: boolean) {
+      if (annotations.set.setHidden(annotations.require(id, activeId()), hidden)) {
+        sync();
+        changed();
+      }
+    },
+    isAnnotationHidden(id: string) {
+      const patch = annotations.set.find(id, activeId());
+      return patch !== undefined && annotations.set.hidden(patch.layer).has(id);
+    },
+    highlightAnnotation(id: string | null) {
+      annotations.highlight(id === null ? null : annotations.require(id, activeId()), canvasWidth());
+    },
+    focusAnnotation: (id: string) => focusPatch(api, annotations.require(id, activeId())),
+    refreshAnnotations,
     getPresetLibrary: () => library,
     setPresetLibrary(doc: unknown, source = 'the preset library') {
       if (!manifest) {
@@ -311,6 +355,7 @@ export function createViewer(options: CreateViewerOptions): LanternaViewer {
       listeners.clear();
       detach();
       lens.destroy();
+      annotations.destroy();
       overlays.destroy();
       notices.destroy();
       widget?.destroy();

@@ -224,7 +224,7 @@ def test_save_to_dataset_sends_the_token_and_handles_401(page_url: str, tmp_path
         evaluate("() => window.lanterna.getPresetLibrary()"),
     ]
     found = run_page(page_url, steps, tmp_path, VIEW, routes=authoring_routes(),
-                     record=r"/api/datasets/",
+                     record=r"/api/datasets/[^/]+/presets",
                      allow_console_errors=["401"])
     values, requests = found["values"], found["requests"]
     assert "wrong token" in values[12][0] and values[12][1] is False and values[12][2] is None

@@ -1,0 +1,225 @@
+"""Real Chromium: a layer's individual annotations in the advanced viewer (docs/annotations.md,
+"Individual annotations in the viewer"): the panel's list, the hover highlight, focusing a patch,
+hiding one (the overlay is then the composite of the others) and refreshing after a rebuild.
+
+The dataset is the lens fixture's PTM ``base`` (1024×768, 128-px tiles) and image ``second``, with
+three overlapping translucent patches at level 0 and one at level 1, published with their W3C
+annotation page (tests/python/fixtures/annotation_pages.py). In the 256×192 view the home view is
+zoom 1/4 (level 1); :data:`REGION` is fitted at 1:1, where one device pixel is one level-0 pixel.
+"""
+
+from __future__ import annotations
+
+import subprocess
+import threading
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+import numpy.typing as npt
+import pytest
+import pyvips
+from flask import request
+
+from lanterna.tiler.dataset.layers import add_image_layer, add_ptm_layer
+from lanterna.tiler.dataset.writer import DatasetWriter
+from lanterna.tiler.iiif.pyramid import vips_from_array
+from lanterna.tiler.overlays import geometry as og
+from lanterna.tiler.overlays.build import build_overlays
+from lanterna.tiler.overlays.composite import composite, load_rgba
+from lanterna.tiler.render import level_image
+from tests.python.fixtures.annotation_pages import write_annotation_page
+from tests.python.fixtures.lens import TILE, VIEW, base_ptm, smooth
+from tests.python.fixtures.lens import H as HEIGHT
+from tests.python.fixtures.lens import W as WIDTH
+from tests.python.fixtures.overlays import patch
+from tests.python.fixtures.page_script import FRAME, evaluate, frame, run_page
+from tests.python.fixtures.servers import LANTERNA, LiveServer
+
+pytestmark = pytest.mark.browser
+
+#: Fitted at 1:1 in the 256×192 view: level 0, one device pixel per level-0 pixel.
+REGION = (120, 100, 256, 192)
+LIGHT = (0.3, 0.4)
+#: patch id → (colour, alpha): three overlapping translucent patches at level 0, one at level 1.
+PATCHES: dict[str, tuple[tuple[int, int, int], int]] = {
+    "0_130_110_120_90_0_wash": ((220, 40, 30), 150),
+    "0_200_150_110_100_1_mark": ((30, 200, 60), 210),
+    "0_260_180_90_80_2_dot": ((40, 60, 230), 130),
+    "1_480_360_320_240_0_region": ((240, 220, 40), 160),
+}
+#: What the store's records would hold (texts, author, the render state the patch was drawn under).
+RECORDS: dict[str, dict[str, Any]] = {
+    "0_130_110_120_90_0_wash": {
+        "short": "Red wash", "long": "<p>A <b>wash</b>.</p>", "author": "Ada",
+        "state": {"layer": "base", "mode": "specular",
+                  "params": {"specExponent": 40, "specKs": 0.6}, "light": [0.5, -0.25]}},
+    "0_200_150_110_100_1_mark": {"short": "Green mark", "author": "Bo", "motivation": "tagging"},
+    "0_260_180_90_80_2_dot": {"short": "", "author": ""},
+    "1_480_360_320_240_0_region": {"short": "Region", "author": "Ada"},
+}
+HIDDEN = "0_200_150_110_100_1_mark"
+#: Each channel may differ by 1/255: the viewer blends each patch into the 8-bit frame in turn,
+#: the reference blends the once-rounded 8-bit composite.
+TOLERANCE = 1
+
+
+def write_patches(folder: Path, ids: list[str]) -> None:
+    """Each patch at exactly its destination size at its level (as the browser draws them)."""
+    folder.mkdir(parents=True, exist_ok=True)
+    for k, ident in enumerate(ids):
+        p = og.parse_patch_name(f"{ident}.png")
+        x0, y0, x1, y1 = og.destination(p)
+        rgb, alpha = PATCHES[ident]
+        px = patch(y1 - y0, x1 - x0, rgb, alpha, seed=k)
+        pyvips.Image.new_from_array(px).copy(interpretation="srgb").write_to_file(
+            str(folder / f"{ident}.png"))
+
+
+def make_notes(root: Path, name: str, ids: list[str]) -> Path:
+    """The dataset ``root/name`` with an overlay built from the patches ``ids`` and their page."""
+    rng = np.random.default_rng(11)
+    with DatasetWriter(root / name, name=name, label="Notes", width=WIDTH, height=HEIGHT,
+                       tile_size=TILE) as ds:
+        add_ptm_layer(ds, base_ptm(rng), layer_id="base", label="Base")
+        second = np.round(smooth(rng, 0.1, 0.9, (3,)) * 255).astype(np.uint8)
+        add_image_layer(ds, vips_from_array(second), layer_id="second", label="Second", fmt="png")
+    folder = root / f"{name}-patches"
+    write_patches(folder, ids)
+    report = build_overlays(root / name, "base", patches_dir=folder)
+    assert not report.errors
+    write_annotation_page(root / name, "base", folder, RECORDS)
+    return root / name
+
+
+def composite_of(folder: Path, ids: list[str], level: int) -> npt.NDArray[np.uint8]:
+    """The tiler's composite (tiler/overlays/composite.py) of the patches ``ids`` at ``level``."""
+    lw, lh = og.level_size(WIDTH, HEIGHT, level)
+    items = []
+    for ident in sorted(ids, key=lambda i: og.parse_patch_name(f"{i}.png").order):
+        p = og.parse_patch_name(f"{ident}.png")
+        placement = og.place(p, WIDTH, HEIGHT)
+        assert placement is not None
+        items.append((load_rgba(folder / f"{ident}.png"), placement))
+    out: npt.NDArray[np.uint8] = composite(lw, lh, items)
+    return out
+
+
+def in_view(level0: npt.NDArray[np.uint8]) -> npt.NDArray[np.float32]:
+    """A level-0 overlay image cropped to :data:`REGION`, RGBA 0–1."""
+    x, y, w, h = REGION
+    return (level0[y:y + h, x:x + w] / 255).astype(np.float32)
+
+
+def over(base: npt.NDArray[np.uint8], ov: npt.NDArray[np.float32]) -> npt.NDArray[np.int16]:
+    """Premultiplied source-over of an overlay (RGBA 0–1) on a frame read back (RGB bytes)."""
+    a = ov[..., 3:4]
+    out = ov[..., :3] * a * 255 + base[..., :3].astype(np.float32) * (1 - a)
+    return np.round(out).astype(np.int16)
+
+
+def assert_frame(got: npt.NDArray[np.uint8], expected: npt.NDArray[np.int16], what: str) -> None:
+    diff = np.abs(got[..., :3].astype(np.int16) - expected).max(axis=-1)
+    bad = np.argwhere(diff > TOLERANCE)
+    assert bad.size == 0, (
+        f"{what}: {len(bad)} pixels off by up to {diff.max()}/255, first at (row, col) "
+        f"{tuple(bad[0])}: got {got[tuple(bad[0])][:3]}, expected {expected[tuple(bad[0])]}")
+
+
+def page_url(server: LiveServer, name: str) -> str:
+    return (f"{server.url}/viewer/?manifest={server.url}/datasets/{name}/manifest.json&layer=base"
+            "&minPixelRatio=0.75&wholeLevelMaxSide=0")
+
+
+#: Wait for the viewer and the list; then fit the region at 1:1 under a fixed light.
+OPEN = [
+    {"waitFor": "() => window.lanterna && document.querySelector('.lanterna-annotations')"},
+    evaluate(f"""async () => {{
+      const l = window.lanterna;
+      await l.ready;
+      l.setLight({LIGHT[0]}, {LIGHT[1]});
+      l.showImageRegion({', '.join(map(str, REGION))});
+      await l.whenFullyLoaded();
+    }}"""),
+]
+
+
+# -- refreshing after a rebuild ------------------------------------------------------------------
+def test_refresh_shows_the_rebuilt_overlay_without_a_reload(tmp_path: Path) -> None:
+    """The page opens with an overlay at level 1 only; ``lanterna annotate build`` then adds the
+    level-0 patches on disk; after ``refreshAnnotations()`` the same page draws the new level 0
+    and lists the new patches, and told its ``onChange`` listeners."""
+    level1 = ["1_480_360_320_240_0_region"]
+    dataset = make_notes(tmp_path, "refresh", level1)
+    server = LiveServer(tmp_path)
+    asked = threading.Event()
+    done = threading.Event()
+    failure: list[str] = []
+
+    @server.app.before_request
+    def watch() -> None:  # the page asks for the rebuild by fetching ?rebuild=now
+        if request.args.get("rebuild") == "now":
+            asked.set()
+
+    def rebuild() -> None:
+        if not asked.wait(300):
+            return
+        folder = tmp_path / "refresh-patches"
+        write_patches(folder, list(PATCHES))
+        proc = subprocess.run([str(LANTERNA), "annotate", "build", str(dataset), "--layer", "base",
+                               "--patches", str(folder)], capture_output=True, text=True)
+        if proc.returncode != 0:
+            failure.append(proc.stdout + proc.stderr)
+        write_annotation_page(dataset, "base", folder, RECORDS)
+        done.set()
+
+    worker = threading.Thread(target=rebuild, daemon=True)
+    worker.start()
+    try:
+        manifest = f"{server.url}/datasets/refresh/manifest.json"
+        result = run_page(page_url(server, "refresh"), [
+            *OPEN,
+            evaluate("""() => {
+              window.__changes = 0;
+              window.lanterna.onChange(() => { window.__changes++; });
+              return window.lanterna.getAnnotations().map((a) => a.id);
+            }"""),
+            FRAME,
+            evaluate(f"() => fetch('{manifest}?rebuild=now').then(() => 1)"),  # the rebuild starts
+            evaluate(f"""async () => {{  // until the rebuilt manifest references the new page
+              for (;;) {{
+                const text = await (await fetch('{manifest}', {{ cache: 'no-store' }})).text();
+                if (text.includes('base_ov0') && text.includes('/annotations/base.json')) {{
+                  return true;
+                }}
+                await new Promise((resolve) => {{ setTimeout(resolve, 100); }});
+              }}
+            }}"""),
+            evaluate("""async () => {
+              const l = window.lanterna;
+              const before = window.__changes;
+              await l.refreshAnnotations();
+              return { changes: window.__changes - before, ids: l.getAnnotations().map((a) => a.id),
+                       rows: document.querySelectorAll('.lanterna-annotation-row').length,
+                       state: l.getOverlayState() };
+            }"""),
+            FRAME,
+            evaluate("() => window.lanterna.setOverlaysVisible(false)"),
+            FRAME,
+        ], tmp_path / "page", VIEW)
+    finally:
+        server.close()
+        worker.join(60)
+    assert done.is_set() and not failure, failure
+    values = result["values"]
+    assert values[2] == level1
+    before, after, plain = frame(values[3]), frame(values[7]), frame(values[9])
+    refreshed = values[6]
+    assert refreshed["changes"] >= 1
+    assert refreshed["ids"] == [*sorted(i for i in PATCHES if i.startswith("0_")), *level1]
+    assert refreshed["rows"] == len(PATCHES)
+    assert refreshed["state"]["level"] == 0 and refreshed["state"]["available"] is True
+    assert np.array_equal(before, plain), "before the refresh, level 0 had no overlay"
+    new_level = level_image(dataset / "iiif" / "base_ov0", 1)
+    assert_frame(after, over(plain, in_view(new_level)), "the rebuilt level 0 after the refresh")
+    assert np.abs(after.astype(int) - before.astype(int)).max() > 60, "the new overlay shows"
