@@ -10,6 +10,7 @@ level 0; fitted at 1:1, one device pixel is one level-0 pixel (docs/annotations.
 
 from __future__ import annotations
 
+import json
 import subprocess
 import threading
 from collections.abc import Mapping
@@ -96,6 +97,14 @@ def make_notes(root: Path, name: str, ids: list[str]) -> Path:
     assert not report.errors
     write_annotation_page(root / name, "base", folder, RECORDS)
     return root / name
+
+
+def level_image_of(dataset: Path, level: int) -> npt.NDArray[np.uint8]:
+    """Layer ``base``'s published overlay image of ``level``, read back from its tiles."""
+    desc = json.loads((dataset / "lanterna.json").read_text())
+    layer = next(x for x in desc["layers"] if x["id"] == "base")
+    ident = next(e["image"] for e in layer["overlay"]["levels"] if e["level"] == level)
+    return level_image(dataset / "iiif" / ident, 1)
 
 
 def composite_of(folder: Path, ids: list[str], level: int) -> npt.NDArray[np.uint8]:
@@ -226,7 +235,7 @@ def test_refresh_shows_the_rebuilt_overlay_without_a_reload(tmp_path: Path) -> N
     assert refreshed["rows"] == len(PATCHES)
     assert refreshed["state"]["level"] == 0 and refreshed["state"]["available"] is True
     assert np.array_equal(before, plain), "before the refresh, level 0 had no overlay"
-    new_level = level_image(dataset / "iiif" / "base_ov0", 1)
+    new_level = level_image_of(dataset, 0)
     assert_frame(after, over(plain, in_view(new_level)), "the rebuilt level 0 after the refresh")
     assert np.abs(after.astype(int) - before.astype(int)).max() > 60, "the new overlay shows"
 
@@ -391,7 +400,7 @@ def test_hiding_a_patch_draws_the_composite_of_the_others(session: dict[str, Any
     x0, y0 = p.x + ORIGIN[0], p.y + ORIGIN[1]
     diff = np.abs(hidden[y0:y0 + p.h, x0:x0 + p.w].astype(int) - shown[y0:y0 + p.h, x0:x0 + p.w])
     assert diff.max() > 100, "the hidden patch is gone"
-    pyramid = level_image(dataset / "iiif" / "base_ov0", 1)
+    pyramid = level_image_of(dataset, 0)
     assert_frame(again, over(base, placed(pyramid, again.shape)), "shown again: the pyramid")
     assert np.array_equal(again, shown)
 
