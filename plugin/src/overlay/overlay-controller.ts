@@ -75,9 +75,9 @@ export class OverlayController {
     }
   }
 
-  /** Open the plan's items (invisible, so they load no tiles yet); resolves once all are open. */
-  async prepare(plan: readonly PlannedItem[]): Promise<void> {
-    await Promise.all(plan.map((p) => this.#itemOf(p)));
+  /** Resolves once the items shown now are open (rejects if one cannot be). */
+  async whenOpen(): Promise<void> {
+    await Promise.all(this.#wanted.map((p) => this.#itemOf(p)));
   }
 
   /** Remove the items that `keep` rejects and that are not shown now (those of a rebuilt overlay). */

@@ -214,9 +214,11 @@ def test_refresh_shows_the_rebuilt_overlay_without_a_reload(tmp_path: Path) -> N
               const l = window.lanterna;
               const before = window.__changes;
               await l.refreshAnnotations();
+              const base = l.manifest.layers.find((x) => x.id === 'base');
               return { changes: window.__changes - before, ids: l.getAnnotations().map((a) => a.id),
                        rows: document.querySelectorAll('.lanterna-annotation-row').length,
-                       state: l.getOverlayState() };
+                       state: l.getOverlayState(), items: l.viewer.world.getItemCount(),
+                       levels: base.overlays.map((o) => o.serviceId.split('/').pop()) };
             }"""),
             FRAME,
             evaluate("() => window.lanterna.setOverlaysVisible(false)"),
@@ -234,6 +236,11 @@ def test_refresh_shows_the_rebuilt_overlay_without_a_reload(tmp_path: Path) -> N
     assert refreshed["ids"] == [*LEVEL0, *level1]
     assert refreshed["rows"] == len(PATCHES)
     assert refreshed["state"]["level"] == 0 and refreshed["state"]["available"] is True
+    desc = json.loads((dataset / "lanterna.json").read_text())
+    levels = next(x for x in desc["layers"] if x["id"] == "base")["overlay"]["levels"]
+    assert refreshed["levels"] == [e["image"] for e in levels], "the rebuilt levels, by image id"
+    # the base layer and the new level 0; the level-1 item of the first build is removed
+    assert refreshed["items"] == 2
     assert np.array_equal(before, plain), "before the refresh, level 0 had no overlay"
     new_level = level_image_of(dataset, 0)
     assert_frame(after, over(plain, in_view(new_level)), "the rebuilt level 0 after the refresh")
