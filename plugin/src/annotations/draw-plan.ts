@@ -37,6 +37,8 @@ export interface PlannedPatch {
   readonly key: string;
   readonly patch: PatchAnnotation;
   readonly rect: ViewportRect;
+  /** Its destination size in level pixels: the size its image is drawn at (resized if need be). */
+  readonly size: { readonly width: number; readonly height: number };
   readonly order: number;
 }
 
@@ -63,12 +65,16 @@ export interface DrawPlanInput {
  */
 export function patchRect(patch: PatchAnnotation, canvasWidth: number): ViewportRect {
   const f = 2 ** patch.level;
-  const x0 = Math.floor(patch.x / f);
-  const y0 = Math.floor(patch.y / f);
-  const x1 = Math.ceil((patch.x + patch.w) / f);
-  const y1 = Math.ceil((patch.y + patch.h) / f);
+  const [x0, y0, x1, y1] = destination(patch);
   return { x: (x0 * f) / canvasWidth, y: (y0 * f) / canvasWidth,
     width: ((x1 - x0) * f) / canvasWidth, height: ((y1 - y0) * f) / canvasWidth };
+}
+
+/** A patch's destination rectangle in level pixels, `[x0, y0, x1, y1]` (docs/annotations.md, "Building"). */
+export function destination(patch: PatchAnnotation): [number, number, number, number] {
+  const f = 2 ** patch.level;
+  return [Math.floor(patch.x / f), Math.floor(patch.y / f), Math.ceil((patch.x + patch.w) / f),
+    Math.ceil((patch.y + patch.h) / f)];
 }
 
 /** A patch's own rectangle (X, Y, W, H in canvas pixels) in viewport units: what the highlight outlines. */
@@ -102,7 +108,8 @@ export function drawPlan(input: DrawPlanInput): PlannedItem[] {
   if (!ov) {
     return [];
   }
-  const own = input.patches.filter((p) => p.level === input.level && p.layer === ov.layer);
+  const own = input.hidden.size === 0 ? []
+    : input.patches.filter((p) => p.level === input.level && p.layer === ov.layer);
   if (!own.some((p) => input.hidden.has(p.id))) {
     return [{ kind: 'level', key: levelKey(ov), level: ov, rect: levelRect(ov, input.canvasWidth), order: 0 }];
   }
@@ -113,8 +120,9 @@ export function drawPlan(input: DrawPlanInput): PlannedItem[] {
       return [];
     }
     const rect = patchRect(patch, input.canvasWidth);
+    const [x0, y0, x1, y1] = destination(patch);
     return [{
-      kind: 'patch' as const, patch, rect, order: i + 1,
+      kind: 'patch' as const, patch, rect, size: { width: x1 - x0, height: y1 - y0 }, order: i + 1,
       key: `patch|${patch.layer}|${patch.id}|${patch.imageUrl}|${patch.modified}|${rectKey(rect)}`,
     }];
   });

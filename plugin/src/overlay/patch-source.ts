@@ -1,7 +1,10 @@
 /**
- * A TileSource of one patch image (`docs/annotations.md`, "Toggling patches"): a single level and a
- * single tile, the PNG decoded like every overlay tile (straight alpha, no colour conversion) into a
- * one-plane `lanternaBundle`, so the drawer's overlay pass draws it exactly as a level tile.
+ * A TileSource of one patch image (`docs/annotations.md`, "Individual annotations in the viewer"): a
+ * single level and a single tile, the PNG decoded like every overlay tile (straight alpha, no colour
+ * conversion) into a one-plane `lanternaBundle`, so the drawer's overlay pass draws it exactly as a
+ * level tile. An image that is not its destination size (a file dropped into the store) is drawn
+ * stretched to it: magnified by the overlay shader (bilinear on premultiplied colour, like the
+ * tiler), reduced by the browser first (`createImageBitmap`, bilinear on straight alpha).
  */
 import OpenSeadragon from 'openseadragon';
 import { BUNDLE_DATA_TYPE, registerBundleType, type PlaneBundle } from '../tiles/bundle';
@@ -20,15 +23,19 @@ interface JobState {
   settled: boolean;
 }
 
-/** A patch PNG of `width × height` pixels at `url`, as a one-tile source. */
+/** A patch PNG at `url`, drawn `width × height` pixels (its destination size), as a one-tile source. */
 export class PatchTileSource extends OpenSeadragon.TileSource {
   declare patchUrl: string;
+  declare patchWidth: number;
+  declare patchHeight: number;
 
   constructor(url: string, width: number, height: number) {
     super({ width, height, tileWidth: width, tileHeight: height, tileOverlap: 0, minLevel: 0, maxLevel: 0,
       ready: true });
     registerBundleType();
     this.patchUrl = url;
+    this.patchWidth = width;
+    this.patchHeight = height;
   }
 
   override getTileUrl(): string {
@@ -65,7 +72,7 @@ export class PatchTileSource extends OpenSeadragon.TileSource {
     const state: JobState = { controller: new AbortController(), settled: false };
     job.userData.lanterna = state;
     fetchPlane(this.patchUrl, { credentials: 'same-origin', signal: state.controller.signal, retries: 2,
-      retryDelayMs: 500 }).then((bitmap) => {
+      retryDelayMs: 500 }).then((decoded) => this.#sized(decoded)).then((bitmap) => {
       if (state.settled || job.jobId === null) {
         bitmap.close();
         return;
@@ -80,6 +87,22 @@ export class PatchTileSource extends OpenSeadragon.TileSource {
       state.settled = true;
       job.fail(`[lanterna] patch ${this.patchUrl}: ${error instanceof Error ? error.message : String(error)}`, null);
     });
+  }
+
+  /**
+   * The bitmap, made no larger than the destination (resized, the original closed): a smaller one is
+   * stretched over the tile by the overlay shader, which filters premultiplied colour.
+   */
+  async #sized(bitmap: ImageBitmap): Promise<ImageBitmap> {
+    if (bitmap.width <= this.patchWidth && bitmap.height <= this.patchHeight) {
+      return bitmap;
+    }
+    try {
+      return await createImageBitmap(bitmap, { resizeWidth: this.patchWidth, resizeHeight: this.patchHeight,
+        resizeQuality: 'medium', premultiplyAlpha: 'none', colorSpaceConversion: 'none' });
+    } finally {
+      bitmap.close();
+    }
   }
 
   override downloadTileAbort(context: OpenSeadragon.ImageJob): void {

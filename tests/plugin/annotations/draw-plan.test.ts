@@ -43,6 +43,11 @@ describe('the draw plan', () => {
     // orders are the places in the level's whole application order: a hidden patch keeps its gap
     expect(plan.map((p) => p.order)).toEqual([1, 3]);
     expect(new Set(plan.map((p) => p.key)).size).toBe(2);
+    expect(plan.map((p) => (p.kind === 'patch' ? p.size : null))).toEqual([{ width: 50, height: 50 },
+      { width: 50, height: 50 }]);
+    const level2 = drawPlan({ levels: LEVELS, patches: [patch('2_13_7_50_30_0_x'), patch('2_0_0_4_4_1_y')],
+      hidden: new Set(['2_0_0_4_4_1_y']), level: 2, canvasWidth: W });
+    expect(level2.map((p) => (p.kind === 'patch' ? p.size : null))).toEqual([{ width: 13, height: 9 }]);
     const all = drawPlan({ levels: LEVELS, patches: PATCHES, hidden: new Set(PATCHES.slice(0, 3).map((p) => p.id)),
       level: 0, canvasWidth: W });
     expect(all).toEqual([]);

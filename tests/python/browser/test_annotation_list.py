@@ -50,8 +50,12 @@ PATCHES: dict[str, tuple[tuple[int, int, int], int]] = {
     "0_200_150_110_100_1_mark": ((30, 200, 60), 210),
     "0_260_180_90_80_2_dot": ((40, 60, 230), 130),
     "0_700_500_200_150_3_corner": ((250, 250, 250), 90),
+    "0_600_200_80_60_4_dropped": ((200, 120, 250), 220),
     "1_480_360_320_240_0_region": ((240, 220, 40), 160),
 }
+#: A file dropped into the store at half its destination size, of one colour (so any resampling
+#: keeps it): the viewer resizes it to its rectangle, as the tiler does.
+DROPPED = {"0_600_200_80_60_4_dropped": (40, 30)}
 LEVEL0 = [i for i in PATCHES if i.startswith("0_")]
 LEVEL1 = "1_480_360_320_240_0_region"
 #: What the store's records would hold (texts, author, the render state the patch was drawn under).
@@ -78,7 +82,12 @@ def write_patches(folder: Path, ids: list[str]) -> None:
         p = og.parse_patch_name(f"{ident}.png")
         x0, y0, x1, y1 = og.destination(p)
         rgb, alpha = PATCHES[ident]
-        px = patch(y1 - y0, x1 - x0, rgb, alpha, seed=k)
+        if ident in DROPPED:
+            w, h = DROPPED[ident]
+            px = np.zeros((h, w, 4), np.uint8)
+            px[...] = (*rgb, alpha)
+        else:
+            px = patch(y1 - y0, x1 - x0, rgb, alpha, seed=k)
         pyvips.Image.new_from_array(px).copy(interpretation="srgb").write_to_file(
             str(folder / f"{ident}.png"))
 
@@ -356,10 +365,11 @@ def test_the_list_shows_the_active_layers_patches(session: dict[str, Any]) -> No
     rows = session["values"]["rows"]
     assert rows["hidden"] is False and rows["ids"] == LEVEL0 and rows["second"] == 0
     assert [r["id"] for r in rows["rows"]] == LEVEL0, "in application order"
-    assert [r["text"] for r in rows["rows"]] == ["Red wash", "Green mark", "0_260_180_90_80_2_dot",
-                                                 "Corner"], "the short text, else the id"
+    assert [r["text"] for r in rows["rows"]] == [
+        "Red wash", "Green mark", "0_260_180_90_80_2_dot", "Corner", "0_600_200_80_60_4_dropped"
+    ], "the short text, else the id"
     assert [r["meta"] for r in rows["rows"]] == ["Level 0 · Ada", "Level 0 · Bo", "Level 0",
-                                                 "Level 0 · Ada"]
+                                                 "Level 0 · Ada", "Level 0"]
     assert all(r["shown"] for r in rows["rows"])
     other = session["values"]["other-layer"]
     assert other["rows"] == [] and other["ids"] == [], "a layer without patches lists none"
