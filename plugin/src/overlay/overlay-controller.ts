@@ -96,11 +96,6 @@ export class OverlayController {
     return this.#wanted.some((p) => !this.#opened.has(p.key) && this.#items.has(p.key));
   }
 
-  /** The keys of the items open now (shown or not). */
-  openKeys(): string[] {
-    return [...this.#opened.keys()];
-  }
-
   #order(planned: PlannedItem): void {
     const opened = this.#opened.get(planned.key);
     if (opened && opened.order !== planned.order) {
