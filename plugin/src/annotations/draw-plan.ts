@@ -31,14 +31,25 @@ export interface PlannedLevel {
   readonly order: number;
 }
 
+/** A rectangle in pixels. */
+export interface PixelBox {
+  readonly x: number;
+  readonly y: number;
+  readonly width: number;
+  readonly height: number;
+}
+
 /** One patch, drawn from its own image. */
 export interface PlannedPatch {
   readonly kind: 'patch';
   readonly key: string;
   readonly patch: PatchAnnotation;
+  /** Where the drawn part lands: the destination rectangle clipped to the level image. */
   readonly rect: ViewportRect;
   /** Its destination size in level pixels: the size its image is drawn at (resized if need be). */
   readonly size: { readonly width: number; readonly height: number };
+  /** The part of the destination-size image inside the level image (all of it, unless it hangs over an edge). */
+  readonly crop: PixelBox;
   readonly order: number;
 }
 
@@ -119,10 +130,19 @@ export function drawPlan(input: DrawPlanInput): PlannedItem[] {
     if (input.hidden.has(patch.id)) {
       return [];
     }
-    const rect = patchRect(patch, input.canvasWidth);
+    // Clipped to the level image, as the tiler clips it (docs/annotations.md, "Building").
     const [x0, y0, x1, y1] = destination(patch);
+    const [cx0, cy0] = [Math.max(x0, 0), Math.max(y0, 0)];
+    const [cx1, cy1] = [Math.min(x1, ov.width), Math.min(y1, ov.height)];
+    if (cx1 <= cx0 || cy1 <= cy0) {
+      return [];
+    }
+    const f = 2 ** patch.level;
+    const w = input.canvasWidth;
+    const rect = { x: (cx0 * f) / w, y: (cy0 * f) / w, width: ((cx1 - cx0) * f) / w, height: ((cy1 - cy0) * f) / w };
+    const crop = { x: cx0 - x0, y: cy0 - y0, width: cx1 - cx0, height: cy1 - cy0 };
     return [{
-      kind: 'patch' as const, patch, rect, size: { width: x1 - x0, height: y1 - y0 }, order: i + 1,
+      kind: 'patch' as const, patch, rect, size: { width: x1 - x0, height: y1 - y0 }, crop, order: i + 1,
       key: `patch|${patch.layer}|${patch.id}|${patch.imageUrl}|${patch.modified}|${rectKey(rect)}`,
     }];
   });

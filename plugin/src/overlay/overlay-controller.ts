@@ -139,10 +139,10 @@ export class OverlayController {
     });
   }
 
-  #patchItem({ patch, rect, size }: PlannedPatch): Promise<OpenSeadragon.TiledImage> {
+  #patchItem({ patch, rect, size, crop }: PlannedPatch): Promise<OpenSeadragon.TiledImage> {
     // The image of a patch id changes when it is replaced: its `modified` time keeps HTTP caches apart.
     const url = patch.modified ? `${patch.imageUrl}?v=${encodeURIComponent(patch.modified)}` : patch.imageUrl;
-    const source = new PatchTileSource(url, size.width, size.height);
+    const source = new PatchTileSource({ url, width: size.width, height: size.height, crop });
     return new Promise((resolve, reject) => {
       this.#viewer.addTiledImage({
         tileSource: source as unknown as OpenSeadragon.TileSource,

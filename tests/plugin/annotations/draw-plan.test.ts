@@ -53,6 +53,16 @@ describe('the draw plan', () => {
     expect(all).toEqual([]);
   });
 
+  it('clips a patch hanging over the level image to it, as the tiler does', () => {
+    // level 2 of 1000 × 600 is 250 × 150 px; the patch covers level px [-2, 6) × [147, 152)
+    const edge = patch('2_-8_588_32_20_0_edge');
+    const [planned] = drawPlan({ levels: LEVELS, patches: [edge, patch('2_0_0_4_4_1_y')],
+      hidden: new Set(['2_0_0_4_4_1_y']), level: 2, canvasWidth: W });
+    expect(planned?.kind === 'patch' && planned.size).toEqual({ width: 8, height: 5 });
+    expect(planned?.kind === 'patch' && planned.crop).toEqual({ x: 2, y: 0, width: 6, height: 3 });
+    expect(planned?.rect).toEqual({ x: 0, y: 588 / W, width: 24 / W, height: 12 / W });
+  });
+
   it('keeps a patch item key across hide sets, and changes it when the patch image changes', () => {
     const plan = (hidden: string[], patches = PATCHES) => drawPlan({ levels: LEVELS, patches, hidden: new Set(hidden),
       level: 0, canvasWidth: W });

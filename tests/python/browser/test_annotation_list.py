@@ -51,6 +51,7 @@ PATCHES: dict[str, tuple[tuple[int, int, int], int]] = {
     "0_260_180_90_80_2_dot": ((40, 60, 230), 130),
     "0_700_500_200_150_3_corner": ((250, 250, 250), 90),
     "0_600_200_80_60_4_dropped": ((200, 120, 250), 220),
+    "0_-20_-10_60_40_5_edge": ((250, 140, 20), 230),  # over the top-left corner: clipped
     "1_480_360_320_240_0_region": ((240, 220, 40), 160),
 }
 #: A file dropped into the store at half its destination size, of one colour (so any resampling
@@ -366,10 +367,10 @@ def test_the_list_shows_the_active_layers_patches(session: dict[str, Any]) -> No
     assert rows["hidden"] is False and rows["ids"] == LEVEL0 and rows["second"] == 0
     assert [r["id"] for r in rows["rows"]] == LEVEL0, "in application order"
     assert [r["text"] for r in rows["rows"]] == [
-        "Red wash", "Green mark", "0_260_180_90_80_2_dot", "Corner", "0_600_200_80_60_4_dropped"
-    ], "the short text, else the id"
+        "Red wash", "Green mark", "0_260_180_90_80_2_dot", "Corner", "0_600_200_80_60_4_dropped",
+        "0_-20_-10_60_40_5_edge"], "the short text, else the id"
     assert [r["meta"] for r in rows["rows"]] == ["Level 0 · Ada", "Level 0 · Bo", "Level 0",
-                                                 "Level 0 · Ada", "Level 0"]
+                                                 "Level 0 · Ada", "Level 0", "Level 0"]
     assert all(r["shown"] for r in rows["rows"])
     other = session["values"]["other-layer"]
     assert other["rows"] == [] and other["ids"] == [], "a layer without patches lists none"
