@@ -10,6 +10,7 @@
 //   {"eval": "async () => …"}  a function run in the page; its (JSON) return value
 //   {"waitFor": "() => …"}  wait until the function returns a truthy value
 //   {"click": "CSS selector"} / {"tap": "CSS selector"}  a mouse click / a touch tap (mobile) on it
+//   {"hover": "CSS selector"}  move the mouse over it
 //   {"fill": "CSS selector", "value": "…"}  type into an input
 //   {"select": "CSS selector", "value": "…"}  choose an option of a <select>
 //   {"files": "CSS selector", "path": "/abs/file"}  set the files of an <input type=file>
@@ -43,6 +44,8 @@ async function runStep(page, step, timeoutMs, cdp) {
     await page.click(step.click);
   } else if (step.tap !== undefined) {
     await page.tap(step.tap);
+  } else if (step.hover !== undefined) {
+    await page.hover(step.hover);
   } else if (step.fill !== undefined) {
     await page.fill(step.fill, step.value ?? '');
   } else if (step.select !== undefined) {

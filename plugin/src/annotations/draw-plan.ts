@@ -31,12 +31,25 @@ export interface PlannedLevel {
   readonly order: number;
 }
 
+/** A rectangle in pixels. */
+export interface PixelBox {
+  readonly x: number;
+  readonly y: number;
+  readonly width: number;
+  readonly height: number;
+}
+
 /** One patch, drawn from its own image. */
 export interface PlannedPatch {
   readonly kind: 'patch';
   readonly key: string;
   readonly patch: PatchAnnotation;
+  /** Where the drawn part lands: the destination rectangle clipped to the level image. */
   readonly rect: ViewportRect;
+  /** Its destination size in level pixels: the size its image is drawn at (resized if need be). */
+  readonly size: { readonly width: number; readonly height: number };
+  /** The part of the destination-size image inside the level image (all of it, unless it hangs over an edge). */
+  readonly crop: PixelBox;
   readonly order: number;
 }
 
@@ -63,12 +76,16 @@ export interface DrawPlanInput {
  */
 export function patchRect(patch: PatchAnnotation, canvasWidth: number): ViewportRect {
   const f = 2 ** patch.level;
-  const x0 = Math.floor(patch.x / f);
-  const y0 = Math.floor(patch.y / f);
-  const x1 = Math.ceil((patch.x + patch.w) / f);
-  const y1 = Math.ceil((patch.y + patch.h) / f);
+  const [x0, y0, x1, y1] = destination(patch);
   return { x: (x0 * f) / canvasWidth, y: (y0 * f) / canvasWidth,
     width: ((x1 - x0) * f) / canvasWidth, height: ((y1 - y0) * f) / canvasWidth };
+}
+
+/** A patch's destination rectangle in level pixels, `[x0, y0, x1, y1]` (docs/annotations.md, "Building"). */
+export function destination(patch: PatchAnnotation): [number, number, number, number] {
+  const f = 2 ** patch.level;
+  return [Math.floor(patch.x / f), Math.floor(patch.y / f), Math.ceil((patch.x + patch.w) / f),
+    Math.ceil((patch.y + patch.h) / f)];
 }
 
 /** A patch's own rectangle (X, Y, W, H in canvas pixels) in viewport units: what the highlight outlines. */
@@ -102,7 +119,8 @@ export function drawPlan(input: DrawPlanInput): PlannedItem[] {
   if (!ov) {
     return [];
   }
-  const own = input.patches.filter((p) => p.level === input.level && p.layer === ov.layer);
+  const own = input.hidden.size === 0 ? []
+    : input.patches.filter((p) => p.level === input.level && p.layer === ov.layer);
   if (!own.some((p) => input.hidden.has(p.id))) {
     return [{ kind: 'level', key: levelKey(ov), level: ov, rect: levelRect(ov, input.canvasWidth), order: 0 }];
   }
@@ -112,9 +130,19 @@ export function drawPlan(input: DrawPlanInput): PlannedItem[] {
     if (input.hidden.has(patch.id)) {
       return [];
     }
-    const rect = patchRect(patch, input.canvasWidth);
+    // Clipped to the level image, as the tiler clips it (docs/annotations.md, "Building").
+    const [x0, y0, x1, y1] = destination(patch);
+    const [cx0, cy0] = [Math.max(x0, 0), Math.max(y0, 0)];
+    const [cx1, cy1] = [Math.min(x1, ov.width), Math.min(y1, ov.height)];
+    if (cx1 <= cx0 || cy1 <= cy0) {
+      return [];
+    }
+    const f = 2 ** patch.level;
+    const w = input.canvasWidth;
+    const rect = { x: (cx0 * f) / w, y: (cy0 * f) / w, width: ((cx1 - cx0) * f) / w, height: ((cy1 - cy0) * f) / w };
+    const crop = { x: cx0 - x0, y: cy0 - y0, width: cx1 - cx0, height: cy1 - cy0 };
     return [{
-      kind: 'patch' as const, patch, rect, order: i + 1,
+      kind: 'patch' as const, patch, rect, size: { width: x1 - x0, height: y1 - y0 }, crop, order: i + 1,
       key: `patch|${patch.layer}|${patch.id}|${patch.imageUrl}|${patch.modified}|${rectKey(rect)}`,
     }];
   });

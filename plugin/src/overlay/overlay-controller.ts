@@ -75,9 +75,9 @@ export class OverlayController {
     }
   }
 
-  /** Open the plan's items (invisible, so they load no tiles yet); resolves once all are open. */
-  async prepare(plan: readonly PlannedItem[]): Promise<void> {
-    await Promise.all(plan.map((p) => this.#itemOf(p)));
+  /** Resolves once the items shown now are open (rejects if one cannot be). */
+  async whenOpen(): Promise<void> {
+    await Promise.all(this.#wanted.map((p) => this.#itemOf(p)));
   }
 
   /** Remove the items that `keep` rejects and that are not shown now (those of a rebuilt overlay). */
@@ -94,11 +94,6 @@ export class OverlayController {
   /** True while a wanted overlay item is still being opened. */
   isBusy(): boolean {
     return this.#wanted.some((p) => !this.#opened.has(p.key) && this.#items.has(p.key));
-  }
-
-  /** The keys of the items open now (shown or not). */
-  openKeys(): string[] {
-    return [...this.#opened.keys()];
   }
 
   #order(planned: PlannedItem): void {
@@ -144,10 +139,10 @@ export class OverlayController {
     });
   }
 
-  #patchItem({ patch, rect }: PlannedPatch): Promise<OpenSeadragon.TiledImage> {
+  #patchItem({ patch, rect, size, crop }: PlannedPatch): Promise<OpenSeadragon.TiledImage> {
     // The image of a patch id changes when it is replaced: its `modified` time keeps HTTP caches apart.
     const url = patch.modified ? `${patch.imageUrl}?v=${encodeURIComponent(patch.modified)}` : patch.imageUrl;
-    const source = new PatchTileSource(url, patch.width, patch.height);
+    const source = new PatchTileSource({ url, width: size.width, height: size.height, crop });
     return new Promise((resolve, reject) => {
       this.#viewer.addTiledImage({
         tileSource: source as unknown as OpenSeadragon.TileSource,

@@ -1,6 +1,7 @@
 /**
  * The overlay state at a level and the placement of level images. Pure: no DOM, no OpenSeadragon.
  */
+import { levelRect } from '../annotations/draw-plan';
 import type { ManifestLayer } from '../iiif/manifest';
 import { overlayAt, type OverlayLevel } from '../iiif/overlays';
 import { sanitizeHtml } from '../ui/sanitize-html';
@@ -20,7 +21,7 @@ export interface OverlayState {
 /** The width in viewport units of a level image of `level.width` px when the canvas is `canvasWidth` px (= 1 unit). */
 export function overlayItemWidth(level: OverlayLevel, canvasWidth: number): number {
   // Level pixel i covers full-resolution pixels [i·2^L, (i+1)·2^L): the last column may overhang.
-  return (level.width * 2 ** level.level) / canvasWidth;
+  return levelRect(level, canvasWidth).width;
 }
 
 /** The overlay state for a layer at a level. */

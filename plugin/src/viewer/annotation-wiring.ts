@@ -94,11 +94,6 @@ export class AnnotationWiring {
     return patch;
   }
 
-  /** The patch highlighted now, or null. */
-  get highlighted(): PatchAnnotation | null {
-    return this.#highlighted;
-  }
-
   /** Outline `patch`'s rectangle over the view (null: no highlight); `canvasWidth` is 1 viewport unit. */
   highlight(patch: PatchAnnotation | null, canvasWidth: number): void {
     this.#highlighted = patch;

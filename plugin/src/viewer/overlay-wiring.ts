@@ -82,6 +82,11 @@ export class OverlayWiring {
     return drawPlan({ levels: layer.overlays, patches, hidden, level, canvasWidth: layer.layer.width });
   }
 
+  /** Resolves once the overlay items shown now are open. */
+  whenOpen(): Promise<void> {
+    return this.#items.whenOpen();
+  }
+
   /** Remove the overlay items not shown now (after the overlays were rebuilt: their ids changed). */
   retireHidden(): void {
     this.#items.retire(() => false);

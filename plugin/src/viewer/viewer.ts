@@ -228,7 +228,12 @@ export function createViewer(options: CreateViewerOptions): LanternaViewer {
     annotations.replace(next.patches, canvasWidth());
     overlays.invalidate();
     sync();
-    overlays.retireHidden(); // the previous build's items (other levels, other ids)
+    // Open the new items, then remove the previous build's (other levels, other ids).
+    await overlays.whenOpen().catch(reportError);
+    if (destroyed) {
+      return;
+    }
+    overlays.retireHidden();
     changed();
   };
 

@@ -43,9 +43,24 @@ describe('the draw plan', () => {
     // orders are the places in the level's whole application order: a hidden patch keeps its gap
     expect(plan.map((p) => p.order)).toEqual([1, 3]);
     expect(new Set(plan.map((p) => p.key)).size).toBe(2);
+    expect(plan.map((p) => (p.kind === 'patch' ? p.size : null))).toEqual([{ width: 50, height: 50 },
+      { width: 50, height: 50 }]);
+    const level2 = drawPlan({ levels: LEVELS, patches: [patch('2_13_7_50_30_0_x'), patch('2_0_0_4_4_1_y')],
+      hidden: new Set(['2_0_0_4_4_1_y']), level: 2, canvasWidth: W });
+    expect(level2.map((p) => (p.kind === 'patch' ? p.size : null))).toEqual([{ width: 13, height: 9 }]);
     const all = drawPlan({ levels: LEVELS, patches: PATCHES, hidden: new Set(PATCHES.slice(0, 3).map((p) => p.id)),
       level: 0, canvasWidth: W });
     expect(all).toEqual([]);
+  });
+
+  it('clips a patch hanging over the level image to it, as the tiler does', () => {
+    // level 2 of 1000 × 600 is 250 × 150 px; the patch covers level px [-2, 6) × [147, 152)
+    const edge = patch('2_-8_588_32_20_0_edge');
+    const [planned] = drawPlan({ levels: LEVELS, patches: [edge, patch('2_0_0_4_4_1_y')],
+      hidden: new Set(['2_0_0_4_4_1_y']), level: 2, canvasWidth: W });
+    expect(planned?.kind === 'patch' && planned.size).toEqual({ width: 8, height: 5 });
+    expect(planned?.kind === 'patch' && planned.crop).toEqual({ x: 2, y: 0, width: 6, height: 3 });
+    expect(planned?.rect).toEqual({ x: 0, y: 588 / W, width: 24 / W, height: 12 / W });
   });
 
   it('keeps a patch item key across hide sets, and changes it when the patch image changes', () => {

@@ -3,15 +3,17 @@
 hiding one (the overlay is then the composite of the others) and refreshing after a rebuild.
 
 The dataset is the lens fixture's PTM ``base`` (1024×768, 128-px tiles) and image ``second``, with
-three overlapping translucent patches at level 0 and one at level 1, published with their W3C
-annotation page (tests/python/fixtures/annotation_pages.py). In the 256×192 view the home view is
-zoom 1/4 (level 1); :data:`REGION` is fitted at 1:1, where one device pixel is one level-0 pixel.
+translucent patches at level 0 (three of them overlapping), published with their W3C annotation page
+(tests/python/fixtures/annotation_pages.py). With an overlay at level 0 only, every view shows
+level 0; fitted at 1:1, one device pixel is one level-0 pixel (docs/annotations.md, "Levels").
 """
 
 from __future__ import annotations
 
+import json
 import subprocess
 import threading
+from collections.abc import Mapping
 from pathlib import Path
 from typing import Any
 
@@ -38,16 +40,25 @@ from tests.python.fixtures.servers import LANTERNA, LiveServer
 
 pytestmark = pytest.mark.browser
 
-#: Fitted at 1:1 in the 256×192 view: level 0, one device pixel per level-0 pixel.
+#: Fitted at 1:1 in the 256×192 view of the refresh test: one device pixel per level-0 pixel.
 REGION = (120, 100, 256, 192)
 LIGHT = (0.3, 0.4)
-#: patch id → (colour, alpha): three overlapping translucent patches at level 0, one at level 1.
+#: patch id → (colour, alpha): three overlapping translucent patches at level 0, one apart, and
+#: one at level 1 (the refresh test's first overlay).
 PATCHES: dict[str, tuple[tuple[int, int, int], int]] = {
     "0_130_110_120_90_0_wash": ((220, 40, 30), 150),
     "0_200_150_110_100_1_mark": ((30, 200, 60), 210),
     "0_260_180_90_80_2_dot": ((40, 60, 230), 130),
+    "0_700_500_200_150_3_corner": ((250, 250, 250), 90),
+    "0_600_200_80_60_4_dropped": ((200, 120, 250), 220),
+    "0_-20_-10_60_40_5_edge": ((250, 140, 20), 230),  # over the top-left corner: clipped
     "1_480_360_320_240_0_region": ((240, 220, 40), 160),
 }
+#: A file dropped into the store at half its destination size, of one colour (so any resampling
+#: keeps it): the viewer resizes it to its rectangle, as the tiler does.
+DROPPED = {"0_600_200_80_60_4_dropped": (40, 30)}
+LEVEL0 = [i for i in PATCHES if i.startswith("0_")]
+LEVEL1 = "1_480_360_320_240_0_region"
 #: What the store's records would hold (texts, author, the render state the patch was drawn under).
 RECORDS: dict[str, dict[str, Any]] = {
     "0_130_110_120_90_0_wash": {
@@ -56,6 +67,7 @@ RECORDS: dict[str, dict[str, Any]] = {
                   "params": {"specExponent": 40, "specKs": 0.6}, "light": [0.5, -0.25]}},
     "0_200_150_110_100_1_mark": {"short": "Green mark", "author": "Bo", "motivation": "tagging"},
     "0_260_180_90_80_2_dot": {"short": "", "author": ""},
+    "0_700_500_200_150_3_corner": {"short": "Corner", "author": "Ada"},
     "1_480_360_320_240_0_region": {"short": "Region", "author": "Ada"},
 }
 HIDDEN = "0_200_150_110_100_1_mark"
@@ -71,7 +83,12 @@ def write_patches(folder: Path, ids: list[str]) -> None:
         p = og.parse_patch_name(f"{ident}.png")
         x0, y0, x1, y1 = og.destination(p)
         rgb, alpha = PATCHES[ident]
-        px = patch(y1 - y0, x1 - x0, rgb, alpha, seed=k)
+        if ident in DROPPED:
+            w, h = DROPPED[ident]
+            px = np.zeros((h, w, 4), np.uint8)
+            px[...] = (*rgb, alpha)
+        else:
+            px = patch(y1 - y0, x1 - x0, rgb, alpha, seed=k)
         pyvips.Image.new_from_array(px).copy(interpretation="srgb").write_to_file(
             str(folder / f"{ident}.png"))
 
@@ -90,6 +107,14 @@ def make_notes(root: Path, name: str, ids: list[str]) -> Path:
     assert not report.errors
     write_annotation_page(root / name, "base", folder, RECORDS)
     return root / name
+
+
+def level_image_of(dataset: Path, level: int) -> npt.NDArray[np.uint8]:
+    """Layer ``base``'s published overlay image of ``level``, read back from its tiles."""
+    desc = json.loads((dataset / "lanterna.json").read_text())
+    layer = next(x for x in desc["layers"] if x["id"] == "base")
+    ident = next(e["image"] for e in layer["overlay"]["levels"] if e["level"] == level)
+    return level_image(dataset / "iiif" / ident, 1)
 
 
 def composite_of(folder: Path, ids: list[str], level: int) -> npt.NDArray[np.uint8]:
@@ -149,7 +174,7 @@ def test_refresh_shows_the_rebuilt_overlay_without_a_reload(tmp_path: Path) -> N
     """The page opens with an overlay at level 1 only; ``lanterna annotate build`` then adds the
     level-0 patches on disk; after ``refreshAnnotations()`` the same page draws the new level 0
     and lists the new patches, and told its ``onChange`` listeners."""
-    level1 = ["1_480_360_320_240_0_region"]
+    level1 = [LEVEL1]
     dataset = make_notes(tmp_path, "refresh", level1)
     server = LiveServer(tmp_path)
     asked = threading.Event()
@@ -199,9 +224,11 @@ def test_refresh_shows_the_rebuilt_overlay_without_a_reload(tmp_path: Path) -> N
               const l = window.lanterna;
               const before = window.__changes;
               await l.refreshAnnotations();
+              const base = l.manifest.layers.find((x) => x.id === 'base');
               return { changes: window.__changes - before, ids: l.getAnnotations().map((a) => a.id),
                        rows: document.querySelectorAll('.lanterna-annotation-row').length,
-                       state: l.getOverlayState() };
+                       state: l.getOverlayState(), items: l.viewer.world.getItemCount(),
+                       levels: base.overlays.map((o) => o.serviceId.split('/').pop()) };
             }"""),
             FRAME,
             evaluate("() => window.lanterna.setOverlaysVisible(false)"),
@@ -216,10 +243,190 @@ def test_refresh_shows_the_rebuilt_overlay_without_a_reload(tmp_path: Path) -> N
     before, after, plain = frame(values[3]), frame(values[7]), frame(values[9])
     refreshed = values[6]
     assert refreshed["changes"] >= 1
-    assert refreshed["ids"] == [*sorted(i for i in PATCHES if i.startswith("0_")), *level1]
+    assert refreshed["ids"] == [*LEVEL0, *level1]
     assert refreshed["rows"] == len(PATCHES)
     assert refreshed["state"]["level"] == 0 and refreshed["state"]["available"] is True
+    desc = json.loads((dataset / "lanterna.json").read_text())
+    levels = next(x for x in desc["layers"] if x["id"] == "base")["overlay"]["levels"]
+    assert refreshed["levels"] == [e["image"] for e in levels], "the rebuilt levels, by image id"
+    # the base layer and the new level 0; the level-1 item of the first build is removed
+    assert refreshed["items"] == 2
     assert np.array_equal(before, plain), "before the refresh, level 0 had no overlay"
-    new_level = level_image(dataset / "iiif" / "base_ov0", 1)
+    new_level = level_image_of(dataset, 0)
     assert_frame(after, over(plain, in_view(new_level)), "the rebuilt level 0 after the refresh")
     assert np.abs(after.astype(int) - before.astype(int)).max() > 60, "the new overlay shows"
+
+
+# -- the list, the highlight, focusing and hiding patches ----------------------------------------
+#: The advanced page at 1280×800 with the view fitted at 1:1, the image's (0, 0) at ORIGIN.
+PAGE_VIEW = (1280, 800)
+ORIGIN = (128, 16)
+WASH = "0_130_110_120_90_0_wash"
+
+
+def row(ident: str, part: str = "") -> str:
+    """The CSS selector of a patch's row in the list (or of a ``part`` of it)."""
+    return f'.lanterna-annotation-row[data-id="{ident}"] {part}'.strip()
+
+
+ROWS = evaluate("""() => ({
+  rows: [...document.querySelectorAll('.lanterna-annotation-row')].map((r) => ({
+    id: r.dataset.id, text: r.querySelector('.lanterna-annotation-text').textContent,
+    meta: r.querySelector('.lanterna-annotation-meta').textContent,
+    shown: r.querySelector('.lanterna-annotation-shown').checked })),
+  hidden: document.querySelector('.lanterna-annotations').hidden,
+  ids: window.lanterna.getAnnotations().map((a) => a.id),
+  second: window.lanterna.getAnnotations('second').length,
+})""")
+#: The highlight boxes, their rectangles in CSS px of the viewer element.
+BOXES = evaluate("""() => {
+  const v = window.lanterna.viewer.element.getBoundingClientRect();
+  return [...document.querySelectorAll('.lanterna-annotation-highlight')].map((b) => {
+    const r = b.getBoundingClientRect();
+    return [r.left - v.left, r.top - v.top, r.width, r.height];
+  });
+}""")
+
+
+@pytest.fixture(scope="module")
+def session(tmp_path_factory: pytest.TempPathFactory) -> dict[str, Any]:
+    """One page through the list's uses; the values of its steps by name, and the dataset."""
+    root = tmp_path_factory.mktemp("notes")
+    dataset = make_notes(root, "notes", LEVEL0)
+    server = LiveServer(root)
+    x, y = -ORIGIN[0], -ORIGIN[1]
+    named: list[tuple[str, Mapping[str, object]]] = [
+        ("", OPEN[0]),
+        ("", evaluate(f"""async () => {{
+          const l = window.lanterna;
+          await l.ready;
+          l.setLight({LIGHT[0]}, {LIGHT[1]});
+          l.showImageRegion({x}, {y}, {PAGE_VIEW[0]}, {PAGE_VIEW[1]});
+          await l.whenFullyLoaded();
+          return l.getOverlayState().level;
+        }}""")),
+        ("rows", ROWS),
+        ("all", FRAME),
+        ("", evaluate("() => window.lanterna.setOverlaysVisible(false)")),
+        ("base", FRAME),
+        ("", evaluate("() => window.lanterna.setOverlaysVisible(true)")),
+        ("", {"click": row(HIDDEN, ".lanterna-annotation-shown")}),
+        ("after-hide", ROWS),
+        ("is-hidden", evaluate(f"() => window.lanterna.isAnnotationHidden('{HIDDEN}')")),
+        ("hidden", FRAME),
+        ("", {"click": row(HIDDEN, ".lanterna-annotation-shown")}),
+        ("again", FRAME),
+        ("", {"hover": row(WASH)}),
+        ("hover", BOXES),
+        ("", {"screenshot": str(root / "list.png")}),
+        ("", {"hover": ".lanterna-annotations legend"}),
+        ("left", BOXES),
+        ("", evaluate("""async () => {
+          const l = window.lanterna;
+          await l.setActiveLayer('second');
+          l.setLight(0, 0);
+          return l.getAnnotations().length;
+        }""")),
+        ("other-layer", ROWS),
+        ("", evaluate("""async () => {
+          const l = window.lanterna;
+          await l.setActiveLayer('base');
+          l.setRenderMode('color');
+          l.resetRenderParams();
+          l.setLight(0, 0);
+        }""")),
+        ("", evaluate(f"() => document.querySelector('{row(WASH, 'button')}').focus()")),
+        ("focused-box", BOXES),
+        ("", {"key": "Enter"}),
+        ("", {"waitFor": "() => window.lanterna.getRenderMode() === 'specular'"}),
+        ("state", evaluate("""async () => {
+          const l = window.lanterna;
+          await l.whenFullyLoaded();
+          return { state: l.getState(), focused: document.activeElement.className };
+        }""")),
+        ("from-other-layer", evaluate(f"""async () => {{
+          const l = window.lanterna;
+          await l.setActiveLayer('second');
+          l.setLight(0, 0);
+          await l.focusAnnotation('{WASH}');
+          return {{ layer: l.getActiveLayer(), mode: l.getRenderMode(), light: l.getLight() }};
+        }}""")),
+    ]
+    try:
+        result = run_page(page_url(server, "notes"), [step for _, step in named], root / "page",
+                          PAGE_VIEW)
+    finally:
+        server.close()
+    values = {name: value for (name, _), value in zip(named, result["values"], strict=True)
+              if name}
+    return {"values": values, "dataset": dataset, "root": root}
+
+
+def test_the_list_shows_the_active_layers_patches(session: dict[str, Any]) -> None:
+    rows = session["values"]["rows"]
+    assert rows["hidden"] is False and rows["ids"] == LEVEL0 and rows["second"] == 0
+    assert [r["id"] for r in rows["rows"]] == LEVEL0, "in application order"
+    assert [r["text"] for r in rows["rows"]] == [
+        "Red wash", "Green mark", "0_260_180_90_80_2_dot", "Corner", "0_600_200_80_60_4_dropped",
+        "0_-20_-10_60_40_5_edge"], "the short text, else the id"
+    assert [r["meta"] for r in rows["rows"]] == ["Level 0 · Ada", "Level 0 · Bo", "Level 0",
+                                                 "Level 0 · Ada", "Level 0", "Level 0"]
+    assert all(r["shown"] for r in rows["rows"])
+    other = session["values"]["other-layer"]
+    assert other["rows"] == [] and other["ids"] == [], "a layer without patches lists none"
+    assert other["hidden"] is False, "the section stays while some layer has annotations"
+
+
+def test_hover_outlines_the_patch_on_screen(session: dict[str, Any]) -> None:
+    p = og.parse_patch_name(f"{WASH}.png")
+    expected = [p.x + ORIGIN[0], p.y + ORIGIN[1], p.w, p.h]  # 1:1, the image's (0, 0) at ORIGIN
+    boxes = session["values"]["hover"]
+    assert len(boxes) == 1
+    assert np.allclose(boxes[0], expected, atol=2), (boxes[0], expected)
+    assert session["values"]["left"] == [], "leaving the row removes the outline"
+    assert len(session["values"]["focused-box"]) == 1, "focusing the row outlines it too"
+
+
+def test_selecting_fits_the_patch_and_restores_its_render_state(session: dict[str, Any]) -> None:
+    got = session["values"]["state"]
+    state = got["state"]
+    recorded = RECORDS[WASH]["state"]
+    assert state["layer"] == "base" and state["mode"] == "specular"
+    assert state["light"] == pytest.approx(recorded["light"], abs=1e-6)
+    assert state["params"]["specExponent"] == 40 and state["params"]["specKs"] == pytest.approx(0.6)
+    p = og.parse_patch_name(f"{WASH}.png")
+    x, y, w, h = state["view"]
+    # the rectangle fits the 1280×800 view: its height fills it, centred across
+    assert h == pytest.approx(p.h, abs=0.5) and w == pytest.approx(p.h * 1.6, abs=0.5)
+    assert x + w / 2 == pytest.approx(p.x + p.w / 2, abs=0.5)
+    assert y == pytest.approx(p.y, abs=0.5)
+    assert got["focused"] == "lanterna-annotation-focus", "the keyboard focus stays on the row"
+    other = session["values"]["from-other-layer"]
+    assert other["layer"] == "base" and other["mode"] == "specular", "the layer it was drawn on"
+    assert [other["light"]["lu"], other["light"]["lv"]] == pytest.approx(recorded["light"])
+
+
+def test_hiding_a_patch_draws_the_composite_of_the_others(session: dict[str, Any]) -> None:
+    values, dataset = session["values"], session["dataset"]
+    assert values["is-hidden"] is True
+    assert [r["shown"] for r in values["after-hide"]["rows"]] == [r != HIDDEN for r in LEVEL0]
+    base, hidden, again, shown = (frame(values[k]) for k in ("base", "hidden", "again", "all"))
+    folder = session["root"] / "notes-patches"
+    others = composite_of(folder, [i for i in LEVEL0 if i != HIDDEN], 0)
+    assert_frame(hidden, over(base, placed(others, hidden.shape)), "with the mark hidden")
+    p = og.parse_patch_name(f"{HIDDEN}.png")
+    x0, y0 = p.x + ORIGIN[0], p.y + ORIGIN[1]
+    diff = np.abs(hidden[y0:y0 + p.h, x0:x0 + p.w].astype(int) - shown[y0:y0 + p.h, x0:x0 + p.w])
+    assert diff.max() > 100, "the hidden patch is gone"
+    pyramid = level_image_of(dataset, 0)
+    assert_frame(again, over(base, placed(pyramid, again.shape)), "shown again: the pyramid")
+    assert np.array_equal(again, shown)
+
+
+def placed(level0: npt.NDArray[np.uint8], shape: tuple[int, ...]) -> npt.NDArray[np.float32]:
+    """A level-0 overlay image where the 1:1 view draws it (the image's (0, 0) at ORIGIN), 0–1."""
+    out = np.zeros((shape[0], shape[1], 4), np.float32)
+    h = min(level0.shape[0], shape[0] - ORIGIN[1])
+    w = min(level0.shape[1], shape[1] - ORIGIN[0])
+    out[ORIGIN[1]:ORIGIN[1] + h, ORIGIN[0]:ORIGIN[0] + w] = level0[:h, :w] / 255
+    return out
