@@ -157,7 +157,7 @@ def overlay_image(url: str, level: int) -> npt.NDArray[np.uint8]:
     with urllib.request.urlopen(f"{url}/datasets/obj/manifest.json", timeout=60) as resp:
         manifest = json.loads(resp.read())
     pages = manifest["items"][0]["annotations"]
-    bodies = [body for p in pages for a in p["items"] for body in (
+    bodies = [body for p in pages for a in p.get("items", []) for body in (
         a["body"] if isinstance(a["body"], list) else [a["body"]])
         if body.get("type") == "Image" and any(
             s.get("type") == "LanternaOverlayLevel" and s.get("level") == level
