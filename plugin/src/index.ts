@@ -55,7 +55,7 @@ export {
   ANNOTATION_DISPLAYS, LensOptionError, type AnnotationDisplay, type LensState, type LensUpdate,
 } from './lens/lens-state';
 export { lensHit, LENS_BORDER_PX, type Circle, type LensHit } from './math/lens';
-export { currentLevel, homeLevelOf, type LevelView } from './math/levels';
+export { currentLevel, homeLevelOf, screenLevelOf, type LevelView } from './math/levels';
 export { parseOverlays, OVERLAY_SERVICE_TYPE, OVERLAY_PROFILE, type OverlayLevel } from './iiif/overlays';
 export {
   parseAnnotationPage, referencedPages, applicationOrder, PATCH_SERVICE_TYPE, PATCH_PROFILE,

@@ -76,9 +76,9 @@ export async function waitForBuild(build: number, options: PollOptions): Promise
 }
 
 /**
- * What the status says once the new build is in the viewer. The first overlay level of a layer
- * becomes its home level (docs/annotations.md "Levels"), so a patch drawn zoomed in may then show
- * at another zoom: the text says which way.
+ * What the status says once the new build is in the viewer. A patch shows at the zoom it was drawn
+ * at unless the home level moved meanwhile (docs/annotations.md "Levels": every patch of a coarser
+ * level removed): then the text says which way to zoom.
  */
 export function shownText(id: string, build: number, level: number, shown: number): string {
   const where = shown === level ? 'is shown' : `is served; zoom ${shown < level ? 'out' : 'in'} to see level ${level}`;

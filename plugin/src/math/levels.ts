@@ -1,8 +1,8 @@
 /**
  * The viewer's current level of detail (`docs/annotations.md`, "Levels"). Pure maths.
  *
- * Levels count from the home view: at home the level is the overlay's coarsest level (the
- * overview), and each doubling of the zoom shows the next finer level, so a level keeps the paper's
+ * Levels count from the home view: at home the level is the home level (the overview; see
+ * {@link homeLevelOf}), and each doubling of the zoom shows the next finer level, so a level keeps the paper's
  * meaning (level `L` drawn at `1/2^L` resolution, one octave of zoom per level) whatever the screen,
  * its pixel density or the size of the image.
  */
@@ -39,15 +39,38 @@ export function currentLevel(view: LevelView): number {
   return Math.min(top, Math.max(0, top - finer));
 }
 
+/** A level whose image keeps at least this many pixels on its longer side is sharp on a screen at home. */
+export const HOME_SIDE = 1024;
+
 /**
- * The level shown at home: the coarsest level that has an overlay image, or, for a layer without
- * an overlay, the coarsest level of its pyramid.
+ * The screen-sized level of an image: the coarsest level whose image is still at least
+ * {@link HOME_SIDE} px on its longer side (0 for images smaller than that), at most `deepest`.
+ * It depends on the image alone, never on the screen, so it never changes.
+ */
+export function screenLevelOf(width: number, height: number, deepest: number): number {
+  const side = Math.max(width, height);
+  if (!(side >= HOME_SIDE) || !(deepest > 0)) {
+    return 0;
+  }
+  return Math.min(Math.floor(deepest), Math.floor(Math.log2(side / HOME_SIDE) + LEVEL_EPSILON));
+}
+
+/**
+ * The level shown at home: the coarsest of the layer's overlay levels and its screen-sized level
+ * ({@link screenLevelOf}), within its pyramid. The screen-sized level makes the home level of a layer
+ * with no overlay, or only fine ones, the level an annotation drawn at home gets, so a first annotation
+ * drawn at some zoom shows there (a patch is always drawn at the current level, never coarser than the
+ * home level, so adding one never moves the home level).
  *
  * @param overlayLevels - the levels of the layer's overlay images (any order; may be empty)
  * @param scaleFactors - the layer pyramid's scale factors (powers of two)
+ * @param width - the layer's full-resolution width (px)
+ * @param height - the layer's full-resolution height (px)
  */
-export function homeLevelOf(overlayLevels: readonly number[], scaleFactors: readonly number[]): number {
-  return overlayLevels.length > 0 ? Math.max(0, ...overlayLevels) : maxLevelOf(scaleFactors);
+export function homeLevelOf(overlayLevels: readonly number[], scaleFactors: readonly number[],
+  width: number, height: number): number {
+  const deepest = maxLevelOf(scaleFactors);
+  return Math.min(deepest, Math.max(screenLevelOf(width, height, deepest), ...overlayLevels));
 }
 
 /** The coarsest level of a pyramid whose scale factors are powers of two (`log2(max factor)`). */

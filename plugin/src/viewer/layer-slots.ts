@@ -167,6 +167,7 @@ export function levelOf(viewer: OpenSeadragon.Viewer, slot: LayerSlot | null): n
   return currentLevel({
     zoom: viewer.viewport.getZoom(true),
     homeZoom: viewer.viewport.getHomeZoom(),
-    homeLevel: homeLevelOf(slot.info.overlays.map((o) => o.level), loaded.geometry.scaleFactors),
+    homeLevel: homeLevelOf(slot.info.overlays.map((o) => o.level), loaded.geometry.scaleFactors,
+      loaded.geometry.width, loaded.geometry.height),
   });
 }

@@ -1,5 +1,5 @@
 import { describe, expect, it } from 'vitest';
-import { currentLevel, homeLevelOf, maxLevelOf } from '../../../plugin/src/math/levels';
+import { currentLevel, homeLevelOf, maxLevelOf, screenLevelOf } from '../../../plugin/src/math/levels';
 
 describe('currentLevel (docs/annotations.md: clamp(H − floor(log2(zoom / homeZoom) + 1e-6), 0, H))', () => {
   it.each([
@@ -35,14 +35,43 @@ describe('currentLevel (docs/annotations.md: clamp(H − floor(log2(zoom / homeZ
 });
 
 describe('homeLevelOf', () => {
-  it('is the coarsest annotated level', () => {
-    expect(homeLevelOf([0, 1, 2, 3], [1, 2, 4, 8, 16])).toBe(3);
-    expect(homeLevelOf([2, 0], [1, 2, 4, 8])).toBe(2);
+  it('is the coarsest annotated level when that is coarser than the screen-sized level', () => {
+    expect(homeLevelOf([0, 1, 2, 3], [1, 2, 4, 8, 16], 1536, 1152)).toBe(3);
+    expect(homeLevelOf([2, 0], [1, 2, 4, 8], 800, 600)).toBe(2);
   });
 
-  it("is the pyramid's coarsest level without an overlay", () => {
-    expect(homeLevelOf([], [1, 2, 4, 8])).toBe(3);
-    expect(homeLevelOf([], [])).toBe(0);
+  it('is the screen-sized level for a layer without an overlay, or with fine levels only', () => {
+    expect(homeLevelOf([], [1, 2, 4, 8], 1536, 1152)).toBe(0); // 1536 px: level 0 is screen-sized
+    expect(homeLevelOf([], [1, 2, 4, 8, 16, 32, 64, 128, 256], 60000, 40000)).toBe(5); // 1875 px
+    expect(homeLevelOf([1], [1, 2, 4, 8, 16, 32, 64, 128, 256], 60000, 40000)).toBe(5);
+    expect(homeLevelOf([], [], 100, 100)).toBe(0);
+  });
+
+  it('never moves when a patch is added at the level shown at some zoom', () => {
+    const factors = [1, 2, 4, 8, 16, 32, 64, 128];
+    for (const overlays of [[], [0], [2, 4], [6]]) {
+      const home = homeLevelOf(overlays, factors, 30000, 20000);
+      for (let finer = 0; finer <= home + 1; finer += 1) {
+        const drawn = currentLevel({ zoom: 2 ** finer, homeZoom: 1, homeLevel: home });
+        expect(homeLevelOf([...overlays, drawn], factors, 30000, 20000)).toBe(home);
+      }
+    }
+  });
+
+  it('stays within the pyramid', () => {
+    expect(homeLevelOf([], [1, 2], 60000, 40000)).toBe(1);
+    expect(homeLevelOf([5], [1, 2, 4], 800, 600)).toBe(2);
+  });
+});
+
+describe('screenLevelOf', () => {
+  it('is the coarsest level at least 1024 px on its longer side', () => {
+    expect(screenLevelOf(1023, 10, 5)).toBe(0);
+    expect(screenLevelOf(2047, 10, 5)).toBe(0);
+    expect(screenLevelOf(2048, 10, 5)).toBe(1);
+    expect(screenLevelOf(10, 4096, 5)).toBe(2);
+    expect(screenLevelOf(60000, 40000, 8)).toBe(5);
+    expect(screenLevelOf(60000, 40000, 3)).toBe(3);
   });
 });
 
