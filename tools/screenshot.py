@@ -7,7 +7,10 @@ Builds the demo dataset if it is missing. Writes, in ``--out-dir``:
 - ``screenshot.png``: the advanced viewer (1280×800): the demo's first base preset (raking light),
   its infrared lens preset over the inscription, the panel open at its presets;
 - ``screenshot-simple.png``: the simplified viewer at a kiosk's 1920×1080, the lens on;
-- ``screenshot-phone.png``: the advanced viewer on a 390×844 touch screen, the panel collapsed.
+- ``screenshot-phone.png``: the advanced viewer on a 390×844 touch screen, the panel collapsed;
+- ``screenshot-annotate.png``: the advanced viewer (1280×800) annotating the inscription under
+  raking light: a drawing in progress (not uploaded: the demo is left as it was), the toolbox, the
+  layer's annotations in the panel. The server allows authoring for it (a throw-away token).
 """
 
 from __future__ import annotations
@@ -15,6 +18,8 @@ from __future__ import annotations
 import argparse
 import json
 import logging
+import math
+import secrets
 import subprocess
 import tempfile
 import threading
@@ -38,6 +43,21 @@ def _shoot(spec: dict[str, Any], tmp: Path) -> None:
     subprocess.run(["node", str(DRIVER), str(path)], check=True, cwd=REPO)
 
 
+def _strokes() -> list[dict[str, Any]]:
+    """A few strokes on the drawing canvas (fractions of its size → CSS px from its corner): a
+    rough underline of the inscription's second line and a ring round its first letters."""
+    ring = [(0.30 + 0.09 * math.cos(t), 0.40 + 0.22 * math.sin(t))
+            for t in (2 * math.pi * k / 12 for k in range(13))]
+    lines = [[(0.12, 0.78), (0.88, 0.80)], ring]
+    steps: list[dict[str, Any]] = []
+    for line in lines:
+        for a, b in zip(line, line[1:], strict=False):
+            steps.append({"gesture": {"type": "mouse", "from": list(a), "to": list(b),
+                                      "steps": 6},
+                          "on": ".lanterna-draw-surface", "fraction": True})
+    return steps
+
+
 def main() -> int:
     parser = argparse.ArgumentParser(description=__doc__,
                                      formatter_class=argparse.RawDescriptionHelpFormatter)
@@ -47,8 +67,8 @@ def main() -> int:
     if not (args.root / "demo" / "presets.json").is_file():
         build_demo(args.root / "demo", force=True)
     logging.getLogger("werkzeug").setLevel(logging.ERROR)  # no request lines
-    server = make_server("127.0.0.1", 0, create_app({"DATA_ROOT": args.root.resolve()}),
-                         threaded=True)
+    config = {"DATA_ROOT": args.root.resolve(), "AUTHORING_TOKEN": secrets.token_urlsafe(24)}
+    server = make_server("127.0.0.1", 0, create_app(config), threaded=True)
     thread = threading.Thread(target=server.serve_forever, daemon=True)
     thread.start()
     out = args.out_dir.resolve()
@@ -94,9 +114,31 @@ def main() -> int:
                     {"screenshot": str(out / "screenshot-phone.png")},
                 ],
             }, Path(tmp))
+            _shoot({
+                "url": f"{base}/viewer/?manifest={manifest}",
+                "viewport": {"width": 1280, "height": 800},
+                "steps": [
+                    {"waitFor": READY},
+                    {"eval": "async () => { await window.lanterna.applyPreset('base', 0);"
+                             " return true; }"},
+                    {"eval": SETTLE},
+                    {"waitFor": "() => !document.getElementById('annotate')?.hidden"},
+                    {"click": "#annotate"},
+                    {"waitFor": "() => document.querySelector('.lanterna-draw-surface') !== null"},
+                    *_strokes(),
+                    {"fill": ".lanterna-annotate input[name=annotate-short]",
+                     "value": "Guide line under LVX"},
+                    {"fill": ".lanterna-annotate input[name=annotate-author]",
+                     "value": "A. Curator"},
+                    {"eval": "async () => { document.querySelector('.lanterna-annotations')"
+                             "?.scrollIntoView({block: 'start'}); return true; }"},
+                    {"screenshot": str(out / "screenshot-annotate.png")},
+                ],
+            }, Path(tmp))
     finally:
         server.shutdown()
-    for name in ("screenshot.png", "screenshot-simple.png", "screenshot-phone.png"):
+    for name in ("screenshot.png", "screenshot-simple.png", "screenshot-phone.png",
+                 "screenshot-annotate.png"):
         print(f"wrote {out / name}")
     return 0
 

@@ -18,7 +18,8 @@
 //   {"download": "CSS selector", "path": "/abs/out"}  click it and save the download it starts
 //   {"key": "Tab"}  press a key
 //   {"gesture": {…}, "on": "CSS selector"}  a gesture of page-actions.mjs (mouse, touch, pen…), x and y in
-//       CSS px of that element (default the viewer element)
+//       CSS px of that element (default the viewer element); with "fraction": true, in fractions of its size
+//       (one-pointer gestures)
 //   {"screenshot": "/abs/out.png"}
 // After the last step the page is left to settle (lanterna.whenFullyLoaded, so that no request is cut
 // off) unless spec "settle" is false.
@@ -69,9 +70,14 @@ async function runStep(page, step, timeoutMs, cdp) {
   } else if (step.gesture !== undefined) {
     const box = await page.evaluate((sel) => {
       const r = (sel ? document.querySelector(sel) : window.lanterna.viewer.element).getBoundingClientRect();
-      return { x: r.left, y: r.top };
+      return { x: r.left, y: r.top, width: r.width, height: r.height };
     }, step.on ?? null);
-    await runGesture(page, cdp, box, step.gesture, false);
+    // "fraction": true gives x and y as fractions of the element's size
+    const scale = ([x, y]) => [x * box.width, y * box.height];
+    const g = step.fraction ? {
+      ...step.gesture, from: scale(step.gesture.from), to: scale(step.gesture.to ?? step.gesture.from),
+    } : step.gesture;
+    await runGesture(page, cdp, box, g, false);
   } else if (step.key !== undefined) {
     await page.keyboard.press(step.key);
   } else if (step.screenshot !== undefined) {
