@@ -3,17 +3,13 @@
  * multipart (`meta` JSON + `image` PNG) and `PUT …/levels/<L>` for level texts, with the tab's bearer
  * token; `GET …/status` for the rebuild. Failures become one line from the server's `{"error"}`.
  */
+import type { PatchRenderState } from '../api/viewer-api';
 import { serverError, type LayerAuthoringUrls } from '../panel/authoring-url';
 import { parseStatus, type BuildStatus } from './build-status';
 import type { PatchFrame } from './patch-frame';
 
-/** The render state a patch was drawn under. */
-export interface DrawnState {
-  readonly layer: string;
-  readonly mode: string;
-  readonly params: Readonly<Record<string, number>>;
-  readonly light: readonly [number, number];
-}
+/** The render state a patch was drawn under (the one annotations carry back). */
+export type DrawnState = PatchRenderState;
 
 /** The `meta` part of an upload. */
 export interface PatchMeta {

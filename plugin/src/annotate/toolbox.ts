@@ -5,6 +5,7 @@
  * the buttons do is wired by `annotator.ts`.
  */
 import { createTokenRow, type TokenRow } from '../panel/authoring-token';
+import { button } from '../panel/panel-dom';
 import type { Brush } from './draw-surface';
 import type { StrokeTool } from './stroke-history';
 
@@ -44,15 +45,6 @@ export interface Toolbox {
   setStatus(text: string, ok?: boolean): void;
   /** Empty the short and long texts (the next patch gets its own). */
   clearTexts(): void;
-}
-
-function button(name: string, text: string, title: string): HTMLButtonElement {
-  const b = document.createElement('button');
-  b.type = 'button';
-  b.name = name;
-  b.textContent = text;
-  b.title = title;
-  return b;
 }
 
 function row(...children: HTMLElement[]): HTMLElement {

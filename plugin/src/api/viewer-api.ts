@@ -7,6 +7,8 @@ import type OpenSeadragon from 'openseadragon';
 import type { PixelData } from '../drawer/read-pixels';
 import { LanternaError } from '../errors';
 import type { PatchAnnotation } from '../iiif/annotation-page';
+
+export type { PatchRenderState } from '../iiif/annotation-page';
 import type { LoadedLayer } from '../iiif/load';
 import type { ManifestInfo } from '../iiif/manifest';
 import type { LayerType } from '../iiif/relight-service';

@@ -23,6 +23,16 @@ export function titledSection(name: string, title: string): HTMLFieldSetElement 
 }
 
 /** A `<label>` holding a caption and its control. */
+/** A plain `<button type="button">` with a `name` (for tests and styles), a text and a tooltip. */
+export function button(name: string, text: string, title: string): HTMLButtonElement {
+  const b = document.createElement('button');
+  b.type = 'button';
+  b.name = name;
+  b.textContent = text;
+  b.title = title;
+  return b;
+}
+
 export function labelled(text: string, control: HTMLElement): HTMLLabelElement {
   const label = document.createElement('label');
   const span = document.createElement('span');

@@ -8,7 +8,7 @@ import type { LanternaViewer } from '../api/viewer-api';
 import { addPreset, type PresetLibrary, type PresetTarget } from '../presets/library';
 import { createDatasetSave } from './dataset-save';
 import { removeEntry } from './library-edits';
-import { labelled, mountSection, namedSelect, type PanelSection, titledSection } from './panel-dom';
+import { button, labelled, mountSection, namedSelect, type PanelSection, titledSection } from './panel-dom';
 import { acceptDroppedFiles, exportLibrary, importLibrary } from './preset-files';
 
 /** Options of {@link createPresetsPanel}. */
@@ -22,15 +22,6 @@ export interface PresetsPanelOptions {
 }
 
 const TARGET_TITLES: Readonly<Record<PresetTarget, string>> = { base: 'Base presets', lens: 'Lens presets' };
-
-function button(name: string, text: string, title: string): HTMLButtonElement {
-  const b = document.createElement('button');
-  b.type = 'button';
-  b.name = name;
-  b.textContent = text;
-  b.title = title;
-  return b;
-}
 
 /** The list of one target's entries. */
 function entryList(lanterna: LanternaViewer, library: PresetLibrary, target: PresetTarget,
