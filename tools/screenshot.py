@@ -8,9 +8,10 @@ Builds the demo dataset if it is missing. Writes, in ``--out-dir``:
   its infrared lens preset over the inscription, the panel open at its presets;
 - ``screenshot-simple.png``: the simplified viewer at a kiosk's 1920×1080, the lens on;
 - ``screenshot-phone.png``: the advanced viewer on a 390×844 touch screen, the panel collapsed;
-- ``screenshot-annotate.png``: the advanced viewer (1280×800) annotating the inscription under
-  raking light: a drawing in progress (not uploaded: the demo is left as it was), the toolbox, the
-  layer's annotations in the panel. The server allows authoring for it (a throw-away token).
+- ``screenshot-annotate.png``: the advanced viewer (1280×800) annotating the gold rosette under
+  specular enhancement, zoomed in to level 0: a drawing in progress (not uploaded: the demo is
+  left as it was), the toolbox, the layer's annotations in the panel. The server allows
+  authoring for it (a throw-away token).
 """
 
 from __future__ import annotations
@@ -45,10 +46,11 @@ def _shoot(spec: dict[str, Any], tmp: Path) -> None:
 
 def _strokes() -> list[dict[str, Any]]:
     """A few strokes on the drawing canvas (fractions of its size → CSS px from its corner): a
-    rough underline of the inscription's second line and a ring round its first letters."""
-    ring = [(0.30 + 0.09 * math.cos(t), 0.40 + 0.22 * math.sin(t))
-            for t in (2 * math.pi * k / 12 for k in range(13))]
-    lines = [[(0.12, 0.78), (0.88, 0.80)], ring]
+    ring round a petal of the rosette and an arrow to it."""
+    ring = [(0.52 + 0.12 * math.cos(t), 0.42 + 0.2 * math.sin(t))
+            for t in (2 * math.pi * k / 16 for k in range(17))]
+    lines = [ring, [(0.15, 0.85), (0.40, 0.58)], [(0.40, 0.58), (0.31, 0.60)],
+             [(0.40, 0.58), (0.38, 0.68)]]
     steps: list[dict[str, Any]] = []
     for line in lines:
         for a, b in zip(line, line[1:], strict=False):
@@ -119,15 +121,18 @@ def main() -> int:
                 "viewport": {"width": 1280, "height": 800},
                 "steps": [
                     {"waitFor": READY},
-                    {"eval": "async () => { await window.lanterna.applyPreset('base', 0);"
-                             " return true; }"},
+                    {"eval": "async () => { const l = window.lanterna;"
+                             " await l.applyPreset('base', 1);"
+                             " l.showImageRegion(0.43 * 1536, 0.23 * 1152, 0.12 * 1536,"
+                             " 0.1 * 1152); return true; }"},
                     {"eval": SETTLE},
                     {"waitFor": "() => !document.getElementById('annotate')?.hidden"},
                     {"click": "#annotate"},
                     {"waitFor": "() => document.querySelector('.lanterna-draw-surface') !== null"},
                     *_strokes(),
+                    {"click": ".lanterna-annotate-texts summary"},
                     {"fill": ".lanterna-annotate input[name=annotate-short]",
-                     "value": "Guide line under LVX"},
+                     "value": "Burnishing marks on a petal"},
                     {"fill": ".lanterna-annotate input[name=annotate-author]",
                      "value": "A. Curator"},
                     {"eval": "async () => { document.querySelector('.lanterna-annotations')"
