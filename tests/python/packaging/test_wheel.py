@@ -111,6 +111,10 @@ def test_the_wheel_holds_every_module_the_viewer_and_the_licence(wheel: Path) ->
     assert not [n for n in names if n.endswith(".map")]  # source maps stay in the checkout
     assert {"lanterna/manifests/schema/iiif_3_0.json",
             "lanterna/manifests/schema/NOTICE.md"} <= names
+    # every document schema the readers check against (presets, patches, annotation pages …)
+    schemas = {f"lanterna/tiler/schemas/{p.name}" for p in (REPO / "tiler/schemas").glob("*.json")}
+    assert {"lanterna/tiler/schemas/patch.schema.json",
+            "lanterna/tiler/schemas/annotation-page.schema.json"} <= schemas <= names
     assert licence == (REPO / "LICENSE").read_bytes()
     assert "License-Expression: Apache-2.0" in metadata.splitlines()
     assert all(n.startswith(("lanterna/", f"{DIST_INFO}/")) for n in names)
