@@ -204,11 +204,18 @@ def fit_sets(sets: Sequence[ImageSet], models: Sequence[str], out: Path, *,
                            f"median {q['medianPsnr']:.2f} dB over {len(q['heldOut'])} lights")
                 plans.append(_plan(result.layers[key], lid, tag + model.label, source,
                                    plane_format))
-        default_label = sets[0].images_dir.name if len(sets) == 1 else Path(out).name
+        default_label = collection_name(sets[0]) if len(sets) == 1 else Path(out).name
         build_dataset(plans, out, name=name or Path(out).name, label=label or default_label,
                       base_url=base_url, tile_size=tile_size, force=force, quality=quality,
                       tiff=tiff, pixel_size_mm=pixel_size_mm)
     return quality
+
+
+def collection_name(s: ImageSet) -> str:
+    """The name of a collection: the folder of its ``.lp`` file when the images are in it or
+    below it (``photos/dirs.lp`` + ``photos/jpg/``: "photos"), else the images' folder."""
+    lp_dir, images = Path(s.lp).resolve().parent, Path(s.images_dir).resolve()
+    return lp_dir.name if images == lp_dir or lp_dir in images.parents else images.name
 
 
 def _open_set(s: ImageSet, scratch: Path, progress: ProgressFactory | None

@@ -25,8 +25,10 @@ MAX_LP_BYTES = 16 << 20
 def read_lp(path: Path, images_dir: Path) -> tuple[list[Path], npt.NDArray[np.float64]]:
     """Return the image files named by ``path`` (found in ``images_dir``) and unit lights.
 
-    Names are matched on their base name (any folder part, ``\\`` or ``/``, is dropped),
-    exactly first and then case-insensitively.
+    Each name is resolved, in this order: as a path relative to the ``.lp`` file's folder (how
+    collections are laid out: ``dirs.lp`` beside a ``jpg/`` folder it names, ``jpg/NAME.jpg``;
+    ``\\`` or ``/``, each part exactly first, then case-insensitively); then by its base name
+    in ``images_dir`` (any folder part dropped), exactly first, then case-insensitively.
 
     Returns
     -------
@@ -82,8 +84,30 @@ def read_lp(path: Path, images_dir: Path) -> tuple[list[Path], npt.NDArray[np.fl
         if norm < 1e-9:
             raise LanternaInputError(path, f"line {no}: zero light vector for {name}")
         lights[i] = [v / norm for v in vec]
-        files.append(_find(path, no, name, images_dir, on_disk))
+        files.append(_beside(path.parent, name) or _find(path, no, name, images_dir, on_disk))
     return files, lights
+
+
+def _beside(folder: Path, name: str) -> Path | None:
+    """The regular file ``name`` names relative to ``folder`` (its parts matched exactly, else
+    case-insensitively when that is unambiguous), or None. Absolute names and ``..`` are not
+    followed: an ``.lp`` names files of its own collection."""
+    parts = PureWindowsPath(name).parts  # splits on both \\ and /
+    if not parts or PureWindowsPath(name).anchor or any(p in ("..", ".") for p in parts):
+        return None
+    here = folder
+    try:  # a name the file system refuses (too long, a NUL …) is not a path of the collection
+        for part in parts:
+            step = here / part
+            if not step.exists():
+                matches = [e for e in here.iterdir() if e.name.lower() == part.lower()]
+                if len(matches) != 1:
+                    return None
+                step = matches[0]
+            here = step
+        return here if here.is_file() else None
+    except (OSError, ValueError):
+        return None
 
 
 def _basename(name: str) -> str:

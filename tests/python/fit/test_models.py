@@ -152,3 +152,20 @@ def test_too_few_lights_is_a_clear_error(tmp_path: Path) -> None:
     with pytest.raises(LanternaInputError, match="cannot fit ptm: .*6 PTM terms"):
         fit_collection(tmp_path / "shots", lp, ["ptm"], tmp_path / "ds")
     _assert_nothing_written(tmp_path, tmp_path / "ds")
+
+
+def test_cli_fit_of_a_collection_whose_lp_names_a_subfolder(tmp_path: Path) -> None:
+    """The README's ``lanterna fit photos/ --lp photos/dirs.lp`` on a collection laid out as in
+    the wild: the ``.lp`` in the folder, the images in ``jpg/`` that it names (``jpg/NAME``)."""
+    lights = spiral_lights()
+    write_collection(tmp_path / "photos" / "jpg", render_bumpy(bumpy_normals(), lights), lights)
+    rows = [f"jpg/IMG_{i:03d}.png {x} {y} {z}" for i, (x, y, z) in enumerate(lights)]
+    lp = tmp_path / "photos" / "dirs.lp"
+    lp.write_text("\n".join([str(len(rows)), *rows]) + "\n")
+    (tmp_path / "photos" / "jpg" / "lights.lp").unlink()
+    for images in (tmp_path / "photos", tmp_path / "photos" / "jpg"):
+        out = tmp_path / f"ds-{images.name}"
+        assert main(["fit", str(images), "--lp", str(lp), "--model", "normals", "--quiet",
+                     "-o", str(out)]) == 0
+        desc = json.loads((out / "lanterna.json").read_text())
+        assert desc["label"] == "photos"  # the collection, not its jpg/ folder

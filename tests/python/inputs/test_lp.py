@@ -105,3 +105,40 @@ def test_a_device_or_fifo_is_refused_without_blocking(tmp_path: Path) -> None:
     os.mkfifo(fifo)
     with pytest.raises(LanternaInputError, match="lights.lp: is not a regular file"):
         read_lp(fifo, tmp_path)
+
+
+def _collection(root: Path, names: list[str]) -> Path:
+    """``root/dirs.lp`` naming ``jpg/…`` files in ``root/jpg/``, as collections are laid out."""
+    (root / "jpg").mkdir(parents=True)
+    for name in names:
+        (root / "jpg" / name).write_bytes(b"x")
+    lp = root / "dirs.lp"
+    rows = [f"jpg/{n} 0.1 0.2 0.9" for n in names]
+    lp.write_text("\n".join([str(len(rows)), *rows]) + "\n")
+    return lp
+
+
+def test_names_are_paths_relative_to_the_lp_file_first(tmp_path: Path) -> None:
+    lp = _collection(tmp_path / "photos", ["a.jpg", "b.jpg"])
+    # the README's pattern: the collection's folder as the images folder, the .lp in it
+    files, _ = read_lp(lp, tmp_path / "photos")
+    assert files == [tmp_path / "photos" / "jpg" / "a.jpg", tmp_path / "photos" / "jpg" / "b.jpg"]
+    # the images folder itself, too
+    assert read_lp(lp, tmp_path / "photos" / "jpg")[0] == files
+
+
+def test_relative_parts_match_case_insensitively_and_windows_separators(tmp_path: Path) -> None:
+    lp = _collection(tmp_path / "photos", ["IMG_1.JPG"])
+    lp.write_text("1\nJPG\\img_1.jpg 0 0 1\n")
+    assert read_lp(lp, tmp_path / "elsewhere")[0] == [tmp_path / "photos" / "jpg" / "IMG_1.JPG"]
+
+
+def test_parent_and_absolute_names_fall_back_to_the_images_folder(tmp_path: Path) -> None:
+    (tmp_path / "outside.jpg").write_bytes(b"secret")
+    images = tmp_path / "photos" / "jpg"
+    images.mkdir(parents=True)
+    (images / "outside.jpg").write_bytes(b"x")
+    lp = tmp_path / "photos" / "dirs.lp"
+    for name in ("../outside.jpg", str(tmp_path / "outside.jpg")):
+        lp.write_text(f"1\n{name} 0 0 1\n")
+        assert read_lp(lp, images)[0] == [images / "outside.jpg"]  # never the file outside
