@@ -135,7 +135,8 @@ def add_svbrdf_layer(
         ``(H, W, 3)`` uint8, encoded ``(n + 1)/2`` in the OpenGL convention (see
         :func:`encode_normals`).
     kd, ks:
-        ``(H, W, 3)`` uint8 in ``input_colorspace`` (``"linear"`` or ``"srgb"``).
+        ``(H, W, 3)`` uint8 in ``input_colorspace``: ``"linear"``, ``"srgb"`` (decoded to linear
+        by the viewer) or ``"display"`` (display values, shaded as stored; docs/rendering.md).
     gloss, depth:
         ``(H, W)`` uint8; gloss maps to ``α = αmin + t·(αmax − αmin)`` with ``gloss_limits``;
         depth to ``low + t·(high − low)`` with ``depth_range = (low, high)`` (the source's units).

@@ -59,10 +59,6 @@ def _to_u8(x: npt.NDArray[np.floating]) -> npt.NDArray[np.uint8]:
     return out
 
 
-def _srgb_to_linear(x: F32) -> F32:
-    return np.where(x <= 0.04045, x / 12.92, ((x + 0.055) / 1.055) ** 2.4).astype(np.float32)
-
-
 def _underdrawing(width: int, height: int) -> F32:
     """A hidden preparatory sketch: guide lines and a draft of the inscription, 0–1 strength."""
     img = Image.new("L", (width, height), 0)
@@ -91,11 +87,14 @@ def build_demo(out: Path, *, base_url: str = DEFAULT_BASE_URL, force: bool = Fal
     hsh = fit_hsh(stack, lights, 9)
     del stack
 
+    # The object is shaded in display values (dome.render adds the highlight to the display-
+    # referred albedo), so its maps are display values too, declared inputColorSpace "display":
+    # the viewer evaluates Lambert + Ward on them as stored. Ward's peak is ks/(4α²), so
+    # ks = specular_color·4α² gives the object's highlight colour at the peak.
     albedo = obj.albedo.astype(np.float32)
     gloss_limits = (0.02, 0.5)
     alpha = float(np.sqrt(2.0 / (obj.shininess + 2.0)))  # Ward α matching the Blinn-Phong lobe
-    ks_lin = _srgb_to_linear(np.asarray(obj.specular_color, np.float32)) * 4 * alpha**2
-    ks = obj.specular[..., None] * ks_lin
+    ks = obj.specular[..., None] * (np.asarray(obj.specular_color, np.float32) * 4 * alpha**2)
     gloss = np.where(obj.specular > 0, (alpha - gloss_limits[0]) / (gloss_limits[1] -
                                                                     gloss_limits[0]), 1.0)
     normals = encode_normals(obj.normals)
@@ -119,7 +118,7 @@ def build_demo(out: Path, *, base_url: str = DEFAULT_BASE_URL, force: bool = Fal
         add_hsh_layer(ds, hsh, layer_id="hsh", label="Relief tablet (HSH, 9 terms)")
         share = {"normals": "demo-normals"}
         add_svbrdf_layer(ds, normals=normals, kd=_to_u8(albedo), ks=_to_u8(ks),
-                         gloss=_to_u8(gloss), gloss_limits=gloss_limits, input_colorspace="srgb",
+                         gloss=_to_u8(gloss), gloss_limits=gloss_limits, input_colorspace="display",
                          share=share, layer_id="svbrdf", label="Shape + material (Ward)")
         add_svbrdf_layer(ds, normals=normals, share=share, layer_id="geometry",
                          label="Geometry only (normal map)")

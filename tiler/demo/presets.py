@@ -34,7 +34,7 @@ def demo_presets(width: int, height: int) -> dict[str, Any]:
                            "params": {"specKd": 0.3, "specKs": 1.0, "specExponent": 20},
                            "light": [0.2, 0.3], "view": inlay},
         "material": {"label": "Shape + material", "layer": "svbrdf", "mode": "color",
-                     "params": {"lightIntensity": 1.4}, "light": [-0.3, 0.35]},
+                     "params": {"lightIntensity": 1.2}, "light": [-0.3, 0.35]},
         "normals": {"label": "Geometry (normals)", "layer": "geometry", "mode": "normals"},
         "unsharp-normals": {"label": "Unsharp normals", "layer": "geometry",
                             "mode": "unsharpNormals", "params": {"umGain": 3.0},
