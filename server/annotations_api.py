@@ -24,7 +24,7 @@ from lanterna.errors import LanternaInputError
 from lanterna.tiler.overlays import store
 from lanterna.tiler.overlays.published import published_layer
 
-from .api import dataset_path, json_error, json_response, refuse_write
+from .api import dataset_path, json_error, json_response, refuse_constant, refuse_write
 from .rebuilder import Rebuilder, status
 
 #: The largest patch upload (multipart body), in bytes.
@@ -121,17 +121,13 @@ def _upload() -> tuple[dict[str, Any] | None, bytes | None]:
 
 def _meta_json(text: str) -> dict[str, Any]:
     try:
-        meta = json.loads(text, parse_constant=_refuse_constant)
+        meta = json.loads(text, parse_constant=refuse_constant)
     except (ValueError, RecursionError) as err:
         raise store.PatchError("meta", f"not valid JSON ({str(err).splitlines()[0][:120]})"
                                ) from None
     if not isinstance(meta, dict):
         raise store.PatchError("meta", "expected a JSON object")
     return meta
-
-
-def _refuse_constant(name: str) -> float:
-    raise ValueError(f"{name} is not a JSON number")
 
 
 # -- reads ------------------------------------------------------------------------------------
@@ -210,8 +206,9 @@ def delete_patch(name: str, layer: str, patch_id: str) -> Response:
 def put_level(name: str, layer: str, level: int) -> Response:
     def action(dataset: Path) -> Response:
         body = request.stream.read(MAX_TEXTS + 1)
-        if len(body) > MAX_TEXTS:
-            raise RequestEntityTooLarge()
+        if len(body) > MAX_TEXTS:  # its own limit, named (not the upload's)
+            raise store.PatchError("level texts", f"the body is over {MAX_TEXTS} bytes",
+                                   too_large=True)
         texts = _meta_json(body.decode("utf-8", "replace"))
         store.set_level_texts(dataset, layer, {str(level): texts})
         _rebuilder().request(dataset, layer)

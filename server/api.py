@@ -111,7 +111,7 @@ def put_presets(name: str) -> Response:
     if len(body) > MAX_BODY:
         return json_error(413, f"the body is over {MAX_BODY} bytes")
     try:
-        doc = json.loads(body.decode("utf-8"), parse_constant=_refuse_constant)
+        doc = json.loads(body.decode("utf-8"), parse_constant=refuse_constant)
     except (UnicodeDecodeError, ValueError, RecursionError) as err:
         return json_error(400, f"the body is not valid JSON ({str(err).splitlines()[0][:120]})")
     try:
@@ -134,5 +134,6 @@ def dataset_path(name: str) -> Path | None:
     return root / name
 
 
-def _refuse_constant(name: str) -> float:
+def refuse_constant(name: str) -> float:
+    """``json.loads``'s ``parse_constant``: NaN and Infinity are not JSON numbers."""
     raise ValueError(f"{name} is not a JSON number")

@@ -19,7 +19,7 @@ import pyvips
 from flask.testing import FlaskClient
 from werkzeug.test import encode_multipart
 
-from lanterna.server.annotations_api import MAX_UPLOAD
+from lanterna.server.annotations_api import MAX_TEXTS, MAX_UPLOAD
 from lanterna.server.app import create_app
 from lanterna.tiler.overlays import store
 from tests.python.fixtures.overlays import W, make_dataset
@@ -144,6 +144,15 @@ def test_a_body_over_the_limit_is_413_before_it_is_read(root: Path) -> None:
     resp = client(root).post(f"{URL}/patches", headers=AUTH, data=body + b"\0" * MAX_UPLOAD,
                              content_type=f"multipart/form-data; boundary={boundary}")
     assert resp.status_code == 413 and state(root) == before
+
+
+def test_oversize_level_texts_are_413_naming_their_own_limit(root: Path) -> None:
+    before = state(root)
+    body = json.dumps({"short": "x", "long": "y" * MAX_TEXTS}).encode()
+    resp = client(root).put(f"{URL}/levels/0", headers=AUTH, data=body,
+                            content_type="application/json")
+    assert resp.status_code == 413 and f"over {MAX_TEXTS} bytes" in error(resp)
+    assert state(root) == before
 
 
 def test_unknown_dataset_layer_or_patch_is_404(root: Path) -> None:
