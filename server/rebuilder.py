@@ -156,7 +156,7 @@ def status(rebuilder: Rebuilder, dataset: Path, layer: str) -> dict[str, Any]:
     return {"layer": layer, "state": state or "done",
             "served": {"build": build_number(entry),
                        "fingerprint": served.get("fingerprint") if served else None},
-            "patches": len(store.list_patches(dataset, layer)),
+            "patches": store.patch_count(dataset, layer),
             "error": failure[1] if failure else None}
 
 

@@ -66,9 +66,10 @@ from .store_files import (
 
 __all__ = ["BUILDING", "DatasetBusyError", "EMPTY_FINGERPRINT", "LAST_ERROR", "LEVEL_TEXTS",
            "NoSuchPatch", "PatchError", "add_patch", "delete_patch", "encode_png", "ensure_store",
-           "fingerprint", "get_patch", "level_texts", "list_patches", "now_iso", "patch_image",
-           "put_file", "read_level_texts", "read_record", "replace_patch", "set_level_texts",
-           "snapshot", "store_dir", "store_lock", "store_records", "store_root"]
+           "fingerprint", "get_patch", "level_texts", "list_patches", "now_iso", "patch_count",
+           "patch_image", "put_file", "read_level_texts", "read_record", "replace_patch",
+           "set_level_texts", "snapshot", "store_dir", "store_lock", "store_records",
+           "store_root"]
 
 #: Keys a client may give when creating a patch; the rest of a record is derived.
 CREATE_KEYS = frozenset({"level", "x", "y", "w", "h", "short", "long", "motivation", "author",
@@ -178,6 +179,15 @@ def list_patches(dataset: Path, layer: str) -> list[dict[str, Any]]:
     overlay = overlay_of(find_layer(desc, layer, Path(dataset)))
     return [published_record(e, layer) for e in overlay.get("patches", [])
             if isinstance(e, dict)]
+
+
+def patch_count(dataset: Path, layer: str) -> int:
+    """``len(list_patches(…))`` without reading a record: what a status read reports."""
+    folder = store_dir(dataset, layer)
+    if folder.is_dir():
+        return len(patch_files(folder))
+    overlay = overlay_of(find_layer(read_description(Path(dataset)), layer, Path(dataset)))
+    return sum(isinstance(e, dict) for e in overlay.get("patches", []))
 
 
 def get_patch(dataset: Path, layer: str, patch_id: str) -> dict[str, Any]:

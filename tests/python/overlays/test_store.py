@@ -153,6 +153,8 @@ def test_the_first_change_fills_the_store_from_the_published_patches(dataset: Pa
     build_overlays(dataset, "uv", gimp_dir=gimp, texts={"1": {"short": "one", "long": "<p>1</p>"}})
     store_folder = store.store_dir(dataset, "uv")
     os.rename(store_folder, tmp_path / "gone")  # a store lost, or a dataset copied alone
+    published = store.list_patches(dataset, "uv")  # no store: the published overlay's
+    assert len(published) == 1 and store.patch_count(dataset, "uv") == 1
     store.add_patch(dataset, "uv", square(4, (0, 0, 255)),
                     {"level": 0, "x": 0, "y": 0, "w": 4, "h": 4})
     assert files(store_folder) == ["0_0_0_4_4_1_patch.json", "0_0_0_4_4_1_patch.png",
@@ -194,6 +196,7 @@ def test_a_dropped_file_without_a_record_gets_one_from_its_name(dataset: Path) -
     (folder / "notes.txt").write_text("not a patch")
     records = store.list_patches(dataset, "vis")
     assert [r["id"] for r in records] == ["0_0_0_10_10_0_patch", "0_50_60_20_20_7_from gimp"]
+    assert store.patch_count(dataset, "vis") == 2  # notes.txt is not a patch
     dropped = records[1]
     assert (dropped["author"], dropped["short"], dropped["motivation"], dropped["state"],
             dropped["info"]) == ("", "", "commenting", None, "from gimp")
