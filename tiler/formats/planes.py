@@ -13,7 +13,7 @@ from dataclasses import dataclass, field
 import numpy as np
 import numpy.typing as npt
 
-from .pca_model import PCA_TYPES, PcaBasis
+from .pca_model import PCA_TYPES, PcaBasis, plane_channel_names
 from .ptm_model import PTM_BASIS
 from .strip_tiff import BandImage
 
@@ -77,6 +77,8 @@ class PlaneLayer:
         if (self.layer_type in PCA_TYPES) != (self.pca is not None):
             raise ValueError(f"a {self.layer_type} layer needs a PCA basis exactly when it is "
                              f"of type {' or '.join(PCA_TYPES)}")
+        if self.pca is not None:
+            _check_pca(self.pca, self.groups)
         if not self.group_names:
             object.__setattr__(self, "group_names", [f"p{i}" for i in range(len(self.groups))])
         if len(self.group_names) != len(self.groups):
@@ -110,3 +112,19 @@ class PlaneLayer:
             for k, name in enumerate(g.channels):
                 out[name] = v[..., k]
         return out
+
+
+def _check_pca(pca: PcaBasis, groups: list[PlaneGroup]) -> None:
+    """A PCA layer's groups are ``P0 P1 P2``, … (padding ``X{q}`` of scale 0) and its basis is
+    ``(N + 1)·D·3`` bytes (what every reader of its block relies on: docs/dataset-format.md)."""
+    n = pca.nplanes
+    want = plane_channel_names(n)
+    if [g.channels for g in groups] != want:
+        raise ValueError(f"a PCA layer of {n} planes has the groups {want}")
+    if any(g.scale[k] != 0.0 for g in groups for k, c in enumerate(g.channels) if c[0] == "X"):
+        raise ValueError("the padding channels of a PCA layer have scale 0")
+    if pca.basis.dtype != np.uint8 or pca.basis.size != (n + 1) * pca.ndimensions * 3 or \
+            pca.ndimensions < 1:
+        raise ValueError(f"the basis of {n} planes has (N + 1)·D·3 bytes, got {pca.basis.size}")
+    if pca.colorspace == "mycc" and (pca.yccplanes is None or sum(pca.yccplanes) != n):
+        raise ValueError(f"a mycc basis of {n} planes needs yccplanes summing to {n}")

@@ -7,6 +7,7 @@ basis in info.json, or — older outputs — in ``materials.bin``; ``yccplanes``
 
 from __future__ import annotations
 
+import dataclasses
 import json
 import os
 from pathlib import Path
@@ -18,6 +19,7 @@ import pytest
 
 from lanterna.errors import LanternaInputError
 from lanterna.tiler.formats.pca_model import PcaBasis
+from lanterna.tiler.formats.planes import PlaneGroup, PlaneLayer
 from lanterna.tiler.formats.relight_web import read_relight
 from tests.python.fixtures.paths import SHARED
 from tests.python.formats.test_relight_web import H, W, write_folder
@@ -281,3 +283,25 @@ def test_a_refused_basis_decodes_no_plane(tmp_path: Path) -> None:
     (tmp_path / "plane_0.png").unlink()
     (tmp_path / "info.json").write_text(json.dumps(_mutate(info, "basis", [1])))
     _expect_refusal(tmp_path, "'basis' must list")
+
+
+def test_plane_layer_refuses_an_inconsistent_pca_layer(tmp_path: Path) -> None:
+    """What the dataset writer stores is checked: groups P0…, padding scale 0, basis size."""
+    pca_folder(tmp_path, "rbf", "mrgb", 5)
+    good = read_relight(tmp_path)
+    assert good.pca is not None
+    renamed = [PlaneGroup(["A", "B", "C"], g.data, g.scale, g.bias) for g in good.groups]
+    with pytest.raises(ValueError, match="has the groups"):
+        PlaneLayer("rbf", renamed, "mrgb", pca=good.pca)
+    last = good.groups[1]
+    loud = [good.groups[0], PlaneGroup(last.channels, last.data, last.scale[:2] + [1.0],
+                                       last.bias)]
+    with pytest.raises(ValueError, match="padding channels"):
+        PlaneLayer("rbf", loud, "mrgb", pca=good.pca)
+    short = dataclasses.replace(good.pca, basis=good.pca.basis[:-3])
+    with pytest.raises(ValueError, match=r"\(N \+ 1\)·D·3 bytes"):
+        PlaneLayer("rbf", good.groups, "mrgb", pca=short)
+    with pytest.raises(ValueError, match="needs a PCA basis"):
+        PlaneLayer("rbf", good.groups, "mrgb")
+    with pytest.raises(ValueError, match="needs a PCA basis"):
+        PlaneLayer("hsh", good.groups, None, 1, pca=good.pca)
