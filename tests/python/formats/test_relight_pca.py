@@ -10,17 +10,22 @@ from __future__ import annotations
 import dataclasses
 import json
 import os
+import shutil
+import tempfile
 from pathlib import Path
 from typing import Any
 
 import numpy as np
 import numpy.typing as npt
 import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
 from lanterna.errors import LanternaInputError
 from lanterna.tiler.formats.pca_model import PcaBasis
 from lanterna.tiler.formats.planes import PlaneGroup, PlaneLayer
 from lanterna.tiler.formats.relight_web import read_relight
+from tests.python.fixtures.fuzz import examples, mutate_bytes, mutate_json, outcome
 from tests.python.fixtures.paths import SHARED
 from tests.python.formats.test_relight_web import H, W, write_folder
 
@@ -305,3 +310,36 @@ def test_plane_layer_refuses_an_inconsistent_pca_layer(tmp_path: Path) -> None:
         PlaneLayer("rbf", good.groups, "mrgb")
     with pytest.raises(ValueError, match="needs a PCA basis"):
         PlaneLayer("hsh", good.groups, None, 1, pca=good.pca)
+
+
+# --- property-based: mutated PCA folders are read or refused in one line ------------------------
+
+
+@pytest.fixture(scope="module")
+def pca_bases(tmp_path_factory: pytest.TempPathFactory) -> list[Path]:
+    """An rbf mrgb folder (basis in materials.bin) and a bilinear mycc one (basis in info.json)."""
+    root = tmp_path_factory.mktemp("pca-fuzz")
+    pca_folder(root / "rbf", "rbf", "mrgb", 5, in_json=False)
+    pca_folder(root / "bilinear", "bilinear", "mycc", 7, yccplanes=[3, 2, 2])
+    return [root / "rbf", root / "bilinear"]
+
+
+@settings(max_examples=examples(200), deadline=None)
+@given(data=st.data())
+def test_mutated_pca_folders_are_read_or_refused_in_one_line(
+        pca_bases: list[Path], tmp_path_factory: pytest.TempPathFactory,
+        data: st.DataObject) -> None:
+    base = data.draw(st.sampled_from(pca_bases))
+    folder = Path(tempfile.mkdtemp(dir=tmp_path_factory.getbasetemp())) / "rti"
+    shutil.copytree(base, folder)
+    if data.draw(st.booleans()) or not (folder / "materials.bin").exists():
+        info = json.loads((folder / "info.json").read_text())
+        (folder / "info.json").write_text(json.dumps(mutate_json(info, data.draw)))
+    else:
+        path = folder / "materials.bin"
+        path.write_bytes(mutate_bytes(path.read_bytes(), data.draw))
+    layer = outcome("Relight PCA folder", folder, lambda: read_relight(folder))
+    if layer is not None:
+        assert layer.pca is None or layer.pca.basis.size == (
+            (layer.pca.nplanes + 1) * layer.pca.ndimensions * 3)
+    shutil.rmtree(folder.parent)
