@@ -166,14 +166,14 @@ def _basis(info: dict[str, Any], path: Path, size: int, nplanes: int,
 
 def _materials_bin(src: Path, size: int, shape: str) -> npt.NDArray[np.uint8]:
     try:
-        mode, have = os.stat(src).st_mode, os.stat(src).st_size
+        info = os.stat(src)
     except FileNotFoundError:
         raise LanternaInputError(src.with_name("info.json"), f"no 'basis' and no {MATERIALS_BIN} "
                                  "beside info.json: the PCA basis is missing") from None
     except OSError as exc:
         raise LanternaInputError(src, f"cannot read file ({exc.strerror})") from None
-    if stat.S_ISREG(mode) and have != size:
-        raise LanternaInputError(src, f"is {have:,} bytes; the basis is {shape} bytes")
+    if stat.S_ISREG(info.st_mode) and info.st_size != size:
+        raise LanternaInputError(src, f"is {info.st_size:,} bytes; the basis is {shape} bytes")
     data = read_input(src, "a Relight basis (materials.bin)", max_bytes=size)
     if len(data) != size:  # changed while read
         raise LanternaInputError(src, f"is {len(data):,} bytes; the basis is {shape} bytes")
