@@ -15,6 +15,7 @@ import numpy.typing as npt
 import pytest
 import pyvips
 
+from lanterna.cli import main
 from lanterna.errors import LanternaInputError
 from lanterna.tiler.formats.relight_layouts import open_tiled_plane
 from lanterna.tiler.formats.relight_web import read_relight
@@ -227,3 +228,23 @@ def test_fifo_index_is_refused(tmp_path: Path) -> None:
     os.mkfifo(folder / "plane_4.tzi")
     err = str(one_line_error(folder))
     assert err.startswith(f"{folder / 'plane_4.tzi'}: ") and "regular file" in err, err
+
+
+@pytest.mark.parametrize("layout", ["deepzoom", "tarzoom", "itarzoom"])
+def test_import_of_a_tiled_folder(tmp_path: Path, layout: str,
+                                  capsys: pytest.CaptureFixture[str]) -> None:
+    """``lanterna import`` tiles the reassembled planes; a bad layout writes nothing."""
+    planes = planes_rgb(5)
+    folder = write_layout(tmp_path / "coin", layout, planes)
+    out = tmp_path / "ds"
+    assert main(["import", str(folder), "-o", str(out), "--plane-format", "png"]) == 0
+    stored = pyvips.Image.new_from_file(str(out / "iiif/coin_p0/full/max/0/default.png"))
+    np.testing.assert_array_equal(stored.numpy()[..., 1], planes[5][..., 0])  # R1: term 5
+    blob = folder / ("planes.tzb" if layout == "itarzoom" else "plane_5.tzb")
+    if layout == "deepzoom":
+        blob = folder / "plane_5_files" / "2" / "2_1.png"
+    blob.write_bytes(blob.read_bytes()[:-40])
+    assert main(["import", str(folder), "-o", str(tmp_path / "bad")]) == 2
+    err = capsys.readouterr().err.strip()
+    assert err.startswith(f"lanterna: error: {blob}: ") and "\n" not in err, err
+    assert not (tmp_path / "bad").exists()
