@@ -147,3 +147,13 @@ def test_missing_band_image(tmp_path: Path, capsys: pytest.CaptureFixture[str]) 
     assert main(["import", str(src), "-o", str(tmp_path / "ds")]) == 2
     assert f"{src / 'ms_01.png'}: band image 1 is missing" in capsys.readouterr().err
     assert not (tmp_path / "ds").exists()
+
+
+def test_a_description_cannot_name_a_multispectral_folder(
+        tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    write_ms(tmp_path / "m", bands())
+    (tmp_path / "d.json").write_text(json.dumps({"layers": [{"id": "x", "source": "m"}]}))
+    assert main(["import", str(tmp_path / "d.json"), "-o", str(tmp_path / "ds")]) == 2
+    err = capsys.readouterr().err
+    assert "m: an OpenLIME multispectral folder makes several layers" in err
+    assert not (tmp_path / "ds").exists()
