@@ -19,6 +19,7 @@ from lanterna.cli import main
 from lanterna.errors import LanternaInputError
 from lanterna.tiler.formats.relight_layouts import open_tiled_plane
 from lanterna.tiler.formats.relight_web import read_relight
+from tests.python.fixtures.paths import shared_file
 from tests.python.fixtures.relight_layouts import write_deepzoom, write_itarzoom, write_tarzoom
 
 W, H = 37, 23  # three levels of 16 px tiles (37 → 18 → 9), partial last column and row
@@ -248,3 +249,21 @@ def test_import_of_a_tiled_folder(tmp_path: Path, layout: str,
     err = capsys.readouterr().err.strip()
     assert err.startswith(f"lanterna: error: {blob}: ") and "\n" not in err, err
     assert not (tmp_path / "bad").exists()
+
+
+@pytest.mark.realdata
+def test_real_relight_planes_tiled_by_libvips(tmp_path: Path) -> None:
+    """A real Relight plane (../shared/realdata/relight-coin), tiled the way Relight's GUI tiled
+    (libvips ``dzsave``, 256 px, overlap 1; PNG tiles so the check is exact), and in Relight's own
+    tarzoom layout, reassembles to the plane's decode."""
+    plane = shared_file("realdata/relight-coin/rbf27/plane_0.jpg")
+    rgb = np.asarray(pyvips.Image.new_from_file(str(plane)).numpy())
+    h, w = rgb.shape[:2]
+    pyvips.Image.new_from_array(rgb).copy(interpretation="srgb").dzsave(
+        str(tmp_path / "plane_0"), layout="dz", tile_size=256, overlap=1, depth="onetile",
+        suffix=".png")
+    write_tarzoom(tmp_path, "plane_1", rgb, tile=256, overlap=1)
+    for k in (0, 1):
+        image = open_tiled_plane(tmp_path, k, 2, w, h)
+        assert image is not None
+        np.testing.assert_array_equal(image.numpy(), rgb)
