@@ -94,6 +94,8 @@ def test_import_makes_a_composite_and_one_layer_per_band(tmp_path: Path) -> None
     manifest = json.loads((out / "manifest.json").read_text())
     text = json.dumps(manifest)
     assert "600.5 nm" in text and "\"wavelength\": 600.5" in text
+    assert manifest["metadata"] == [{"label": {"en": ["Wavelengths"]}, "value": {"en": [
+        "420 nm, 460 nm, 510 nm, 550 nm, 600.5 nm, 640 nm, 690 nm"]}}]
     assert manifest["summary"]["en"][0] == (
         "Multispectral (OpenLIME): 7 bands at 420, 460, 510, 550, 600.5, 640, 690 nm; true "
         "colour from presets.json 'd65_true_color'.")
