@@ -84,6 +84,11 @@ def build_manifest(desc: dict[str, Any],
     pages = [*overlay_pages(desc, infos), *page_references(desc)]
     if pages:
         doc["items"][0]["annotations"] = pages
+    bands = [layer["service"]["wavelength"] for layer in desc["layers"]
+             if "wavelength" in layer["service"]]  # spectral band layers (docs/importing.md)
+    if bands:
+        doc["metadata"] = [{"label": {"en": ["Wavelengths"]},
+                            "value": {"en": [", ".join(f"{nm:g} nm" for nm in bands)]}}]
     presets, physdim = presets_service(desc, ds_url), physdim_service(desc, ds_url)
     if presets is not None:
         doc["service"] = [presets]

@@ -41,6 +41,7 @@ from lanterna.tiler.limits import check_pixels, check_quantisation
 
 from .pca_model import PCA_TYPES
 from .planes import PlaneGroup, PlaneLayer
+from .relight_layouts import open_tiled_plane, tiled_plane_source
 from .relight_pca import pca_groups, pca_nplanes, read_pca_basis
 from .relight_ycc import ycc_as_rgb
 
@@ -93,8 +94,9 @@ def read_relight(folder: str | Path) -> PlaneLayer:
     ext = _plane_format(info, info_path)
     check_pixels(info_path, width, height, "the Relight image")
     # every plane's header first (sizes compared, nothing decoded), then the pixels
-    opened = [_open_plane(info_path.parent, i, ext, width, height)
-              for i in range((nplanes + 2) // 3)]
+    njpegs = (nplanes + 2) // 3
+    opened = [_open_plane(info_path.parent, i, ext, width, height, njpegs)
+              for i in range(njpegs)]
     planes = np.stack([c for path, image in opened for c in _decode_plane(path, image)])
     planes = planes[:nplanes]
     lossy = ext == "jpg"  # the planes are JPEG decodes
@@ -205,22 +207,28 @@ def _plane_format(info: dict[str, Any], path: Path) -> str:
     return str(fmt)
 
 
-def _open_plane(folder: Path, index: int, ext: str, width: int,
-                height: int) -> tuple[Path, pyvips.Image]:
-    """Open ``plane_{index}.{ext}`` (its header only) and check its size and bands."""
+def _open_plane(folder: Path, index: int, ext: str, width: int, height: int,
+                count: int) -> tuple[Path, pyvips.Image]:
+    """Open ``plane_{index}.{ext}`` (its header only), or the plane's tiled layout
+    (:mod:`.relight_layouts`: deepzoom, tarzoom, itarzoom), and check its size and bands."""
     path = folder / f"plane_{index}.{ext}"
-    if not path.is_file():
-        tiled = any((folder / f"plane_{index}{s}").exists() for s in (".dzi", "_files", ""))
-        hint = "; tiled layouts (deepzoom, google, …) are not supported" if tiled else ""
+    source = None if path.is_file() else tiled_plane_source(folder, index)
+    image = None if source is None else open_tiled_plane(folder, index, count, width, height)
+    if source is not None and image is not None:
+        path = source[1]
+    elif not path.is_file():
+        tiled = (folder / f"plane_{index}").exists()
+        hint = "; tiled layouts google and zoomify are not supported" if tiled else ""
         raise LanternaInputError(path, f"plane {index} is missing{hint}")
-    # From a buffer, not a file name: libvips caches loads by name, so a plane rewritten in
-    # place would come back stale.
-    data = read_input(path, "a plane image")
-    try:
-        image = pyvips.Image.new_from_buffer(data, "", fail_on="warning")
-        bands, w, h, fmt = image.bands, image.width, image.height, image.format
-    except pyvips.Error as exc:
-        raise LanternaInputError(path, f"cannot decode plane ({_reason(exc)})") from None
+    else:
+        # From a buffer, not a file name: libvips caches loads by name, so a plane rewritten in
+        # place would come back stale.
+        data = read_input(path, "a plane image")
+        try:
+            image = pyvips.Image.new_from_buffer(data, "", fail_on="warning")
+        except pyvips.Error as exc:
+            raise LanternaInputError(path, f"cannot decode plane ({_reason(exc)})") from None
+    bands, w, h, fmt = image.bands, image.width, image.height, image.format
     if bands != 3 or fmt != "uchar":
         raise LanternaInputError(path, f"plane has {bands} band(s) of {fmt}; expected 8-bit RGB")
     if (w, h) != (width, height):

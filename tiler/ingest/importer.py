@@ -9,8 +9,10 @@ from lanterna.errors import LanternaInputError
 from lanterna.tiler.dataset.plan import LayerPlan, build_dataset
 from lanterna.tiler.dataset.plane_format import AUTO, PlaneFormat
 from lanterna.tiler.dataset.writer import DEFAULT_BASE_URL, check_identifier
+from lanterna.tiler.formats.relight_multispectral import is_multispectral
 
 from .description import plan_description
+from .multispectral import plan_multispectral
 from .sources import plan_bands, plan_source
 
 
@@ -21,7 +23,8 @@ def import_sources(sources: Sequence[Path], out: Path, *, name: str | None = Non
                    plane_format: PlaneFormat = AUTO, pixel_size_mm: float | None = None) -> Path:
     """Import sources as the layers of dataset ``out`` (in order; the first is the default).
 
-    A source is a ``.ptm``, ``.rti``, a Relight web-format folder, an image, or a dataset
+    A source is a ``.ptm``, ``.rti``, a Relight web-format folder (any layout), an OpenLIME
+    multispectral folder (a composite and one layer per band), an image, or a dataset
     description ``.json`` (Lanterna's or the seed paper's scene format). ``bands`` adds one grey
     layer per spectral band, ``fusions`` one false-colour layer per band triple. ``tiff`` also
     writes a pyramidal TIFF per image (``tiff/<image>.tif``) for the IIIF image server.
@@ -37,6 +40,10 @@ def import_sources(sources: Sequence[Path], out: Path, *, name: str | None = Non
             desc_fields, desc_plans = plan_description(source, plane_format=plane_format)
             fields = {**desc_fields, **fields}
             plans.extend(desc_plans)
+        elif source.is_dir() and is_multispectral(source):
+            ms_plans, ms_summary = plan_multispectral(source)
+            fields.setdefault("summary", ms_summary)
+            plans.extend(ms_plans)
         else:
             plans.append(plan_source(source, plane_format=plane_format))
     if bands:

@@ -25,6 +25,7 @@ from lanterna.tiler.dataset.writer import DatasetWriter, check_identifier
 from lanterna.tiler.formats.hsh import read_rti
 from lanterna.tiler.formats.layouts import SVBRDF_MAPS
 from lanterna.tiler.formats.ptm import read_ptm
+from lanterna.tiler.formats.relight_multispectral import is_multispectral
 from lanterna.tiler.formats.relight_web import read_relight
 from lanterna.tiler.iiif.pyramid import vips_from_array
 from lanterna.tiler.inputs.images import load_rgb_image
@@ -59,6 +60,9 @@ def plan_source(path: Path, *, layer_id: str | None = None, label: str | None = 
         if not (path / "info.json").is_file():
             raise LanternaInputError(path, "a folder source must be a Relight web-format folder "
                                      "(info.json + plane_k.jpg)")
+        if is_multispectral(path):
+            raise LanternaInputError(path, "an OpenLIME multispectral folder makes several "
+                                     "layers: give it to lanterna import as a source of its own")
         planes = read_relight(path)
         kind = f"{planes.layer_type.upper()} {(planes.colorspace or '').upper()}".strip()
         lbl = label or f"{path.name} ({kind}, Relight)"
