@@ -1,0 +1,154 @@
+"""A PCA basis (rbf, bilinear) as a model of the streamed fit: its per-band step and its planes.
+
+:func:`prepare_pca` learns the layer's basis and, for the leave-one-out report, a second basis
+without the held-out lights (learnt from the same pixel sample restricted to the training
+lights: the PCA never sees a held-out image, and the RBF interpolates only the training
+lights; bilinear resamples only them onto its grid).  The engine
+(:func:`~lanterna.tiler.fit.engine.fit_stream`, ``extra=``) then runs :class:`PcaStep` on every
+band — the projection onto the basis, 8-bit per plane — and hands the planes to
+:class:`PcaModel`, which writes them to file-backed groups ``p0, p1, …`` of three planes.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable, Sequence
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+import numpy.typing as npt
+
+from lanterna.tiler.formats.pca_model import plane_channel_names
+from lanterna.tiler.formats.planes import PlaneGroup, PlaneLayer
+from lanterna.tiler.formats.strip_tiff import StripTiffWriter
+from lanterna.tiler.progress import Progress
+
+from .pca import PcaFit, PcaSpec, fit_basis
+from .pca_sample import sample_pixels
+
+Out = dict[str, npt.NDArray[np.generic]]
+
+
+@dataclass
+class PcaStep:
+    """One band ``(n, b, W, 3)`` → its 8-bit planes and the held-out squared errors.
+
+    Picklable (arrays and the fitted bases only), so a Dask worker can run it.
+    """
+
+    key: str
+    full: PcaFit
+    loo: PcaFit | None
+    lights: npt.NDArray[np.float64]
+    held: npt.NDArray[np.intp]
+    train: npt.NDArray[np.intp]
+    layers: bool = True
+
+    def __call__(self, band: npt.NDArray[np.float32]
+                 ) -> tuple[Out | None, npt.NDArray[np.float64]]:
+        n, b, w, _ = band.shape
+        pixels = np.moveaxis(np.asarray(band, np.float32).reshape(n, b * w, 3), 0, 1)
+        out: Out | None = None
+        if self.layers:
+            t = self.full.quantise(self.full.coefficients(pixels))  # (P, N)
+            groups = -(-t.shape[1] // 3)
+            padded = np.zeros((b * w, 3 * groups), np.uint8)
+            padded[:, :t.shape[1]] = t
+            out = {"planes": padded.reshape(b, w, groups, 3)}
+        sse = np.zeros(len(self.held))
+        if self.loo is not None:
+            coeffs = self.loo.coefficients(pixels[:, self.train])
+            for j, i in enumerate(self.held):
+                diff = self.loo.predict(coeffs, self.lights[i]) - pixels[:, i]
+                sse[j] = float(np.vdot(diff, diff))
+        return out, sse
+
+
+class PcaModel:
+    """The engine's handle on one PCA layer: the :class:`PcaStep` and where its planes go."""
+
+    def __init__(self, step: PcaStep, scratch: Path, width: int, height: int) -> None:
+        self.key, self.step = step.key, step
+        self.groups = -(-step.full.basis.nplanes // 3)
+        self.writers = [StripTiffWriter(Path(scratch) / f"{step.key}-p{g}.tif", width, height, 3)
+                        for g in range(self.groups)] if step.layers else []
+
+    def take(self, out: Out) -> None:
+        """Write one band's planes ``(b, W, groups, 3)``."""
+        planes = out["planes"]
+        for g, writer in enumerate(self.writers):
+            writer.write(np.ascontiguousarray(planes[:, :, g]))
+
+    def finish(self, progress: Callable[[str, int], Progress] | None = None) -> PlaneLayer:
+        """The fitted layer: ``p0, p1, …`` groups (padding channels of scale 0), the basis."""
+        fit = self.step.full
+        scale, bias = fit.scale_bias()
+        n = fit.basis.nplanes
+        groups = []
+        for g, (names, writer) in enumerate(zip(plane_channel_names(n), self.writers,
+                                                strict=True)):
+            qs = range(3 * g, 3 * g + 3)
+            groups.append(PlaneGroup(names, writer.close(),
+                                     [scale[q] if q < n else 0.0 for q in qs],
+                                     [bias[q] if q < n else 0.0 for q in qs]))
+        return PlaneLayer(fit.basis.layer_type, groups, colorspace=fit.basis.colorspace,
+                          extra=fit.basis.fields(),
+                          group_names=[f"p{g}" for g in range(self.groups)])
+
+
+def prepare_pca(spec: PcaSpec, sample: npt.NDArray[np.float32], lights: npt.NDArray[np.float64],
+                held: npt.NDArray[np.intp], scratch: Path, width: int, height: int, *,
+                layers: bool = True) -> PcaModel:
+    """Learn ``spec``'s bases from the pixel ``sample`` ``(S, n, 3)`` and make its model.
+
+    Raises
+    ------
+    ValueError
+        When the lights cannot carry the basis (fewer lights than planes for ``rbf``).
+    """
+    n = len(lights)
+    dims = n if spec.layer_type == "rbf" else spec.resolution ** 2
+    if spec.nplanes > 3 * dims:
+        raise ValueError(f"{spec.layer_type}: {spec.nplanes} planes need at least "
+                         f"{-(-spec.nplanes // 3)} light samples, got {dims}")
+    train = np.setdiff1d(np.arange(n), held)
+    full = fit_basis(sample, lights, spec)
+    loo = fit_basis(sample[:, train], lights[train], spec) if len(held) else None
+    step = PcaStep(spec.layer_type, full, loo, np.asarray(lights, np.float64),
+                   np.asarray(held, np.intp), train, layers)
+    return PcaModel(step, scratch, width, height)
+
+
+def pca_models(images: Any, lights: npt.NDArray[np.float64], specs: Sequence[PcaSpec],
+               held: npt.NDArray[np.intp], scratch: Path, *, band_rows: int,
+               layers: bool = True, progress: Callable[[str, int], Progress] | None = None
+               ) -> list[PcaModel]:
+    """The models of ``specs`` for one stack: one sampling pass (:mod:`.pca_sample`) for all."""
+    if not specs:
+        return []
+    _, h, w, _ = images.shape
+    sample = sample_pixels(images, band_rows, progress=progress)
+    return [prepare_pca(spec, sample, lights, held, scratch, w, h, layers=layers)
+            for spec in specs]
+
+
+def fit_pca(images: Any, lights: npt.NDArray[np.float64], spec: PcaSpec, *,
+            band_rows: int = 64) -> tuple[PcaFit, npt.NDArray[np.uint8]]:
+    """Fit ``spec`` to a whole stack in memory: the basis and the 8-bit planes ``(H, W, N)``.
+
+    The library form of what ``lanterna fit --model rbf|bilinear`` streams (same sample, same
+    basis, same bytes, whatever ``band_rows``).
+    """
+    n, h, w, _ = images.shape
+    if lights.shape != (n, 3):
+        raise ValueError(f"{n} images but lights of shape {lights.shape}")
+    sample = sample_pixels(images, band_rows)
+    full = fit_basis(sample, lights, spec)
+    planes = np.empty((h, w, spec.nplanes), np.uint8)
+    for y0 in range(0, h, band_rows):
+        band = np.asarray(images[:, y0:y0 + band_rows], np.float32)
+        pixels = np.moveaxis(band.reshape(n, -1, 3), 0, 1)
+        planes[y0:y0 + band.shape[1]] = full.quantise(full.coefficients(pixels)).reshape(
+            band.shape[1], w, -1)
+    return full, planes
