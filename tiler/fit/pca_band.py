@@ -93,7 +93,7 @@ class PcaModel:
                                      [scale[q] if q < n else 0.0 for q in qs],
                                      [bias[q] if q < n else 0.0 for q in qs]))
         return PlaneLayer(fit.basis.layer_type, groups, colorspace=fit.basis.colorspace,
-                          extra=fit.basis.fields(),
+                          pca=fit.basis,
                           group_names=[f"p{g}" for g in range(self.groups)])
 
 
