@@ -130,19 +130,9 @@ def resample_matrix(lights: npt.ArrayLike, resolution: int, sigma: float = DEFAU
     return out
 
 
-def to_samples(pixels: npt.ArrayLike, spec: PcaSpec, resample: F64 | None) -> F64:
-    """Pixels' light samples ``(P, n, 3)`` as basis samples ``(P, D, 3)`` (grid, YCoCg)."""
-    x = np.asarray(pixels, np.float64)
-    if spec.layer_type == "bilinear":
-        assert resample is not None
-        x = np.matmul(resample, x)  # (D, n) @ (P, n, 3)
-    if spec.colorspace == "mycc":
-        x = x @ RGB_TO_YCC.T
-    return x
-
-
 def sample_transform(spec: PcaSpec, nlights: int, resample: F64 | None) -> F64:
-    """:func:`to_samples` as one matrix ``(D·3, n·3)`` on a pixel's flattened samples."""
+    """The basis samples of a pixel as one matrix ``(D·3, n·3)`` on its flattened light samples
+    (index ``light·3 + channel``): the resampling onto the grid (bilinear), then YCoCg (mycc)."""
     t: F64 = np.asarray(np.kron(resample, np.eye(3)) if resample is not None
                         else np.eye(3 * nlights), np.float64)
     if spec.colorspace == "mycc":
@@ -150,11 +140,38 @@ def sample_transform(spec: PcaSpec, nlights: int, resample: F64 | None) -> F64:
     return t
 
 
-def _top_eigenvectors(centred: F64, count: int) -> F64:
-    """The ``count`` leading unit eigenvectors ``(count, dim)`` of the rows' covariance."""
+@dataclass(frozen=True)
+class Moments:
+    """The mean ``(n·3,)`` and covariance ``(n·3, n·3)`` of a pixel sample's light samples.
+
+    Every basis of a fit is learnt from these (computed once): the samples of a basis are a
+    linear map ``T`` of the light samples, so their mean is ``T·m`` and covariance ``T·C·Tᵀ``;
+    the leave-one-out basis takes the rows and columns of the training lights.
+    """
+
+    mean: F64
+    cov: F64
+
+    @classmethod
+    def of(cls, pixels: npt.ArrayLike) -> Moments:
+        """The moments of pixels ``(S, n, 3)`` (the product in float32, the result float64)."""
+        x = np.asarray(pixels, np.float32)
+        flat = x.reshape(len(x), -1)
+        mean = flat.mean(axis=0, dtype=np.float64)
+        centred = flat - mean.astype(np.float32)
+        cov = (centred.T @ centred).astype(np.float64) / max(1, len(flat))
+        return cls(mean, cov)
+
+    def restrict(self, lights: npt.NDArray[np.intp]) -> Moments:
+        """The moments of the light samples of ``lights`` only."""
+        cols = (np.asarray(lights)[:, None] * 3 + np.arange(3)).reshape(-1)
+        return Moments(self.mean[cols], self.cov[np.ix_(cols, cols)])
+
+
+def _top_eigenvectors(cov: F64, count: int) -> F64:
+    """The ``count`` leading unit eigenvectors ``(count, dim)`` of a covariance."""
     if count == 0:
-        return np.zeros((0, centred.shape[1]))
-    cov = centred.T @ centred / max(1, len(centred))
+        return np.zeros((0, cov.shape[0]))
     vals, vecs = np.linalg.eigh(cov)
     top = vecs[:, np.argsort(vals)[::-1][:count]].T
     # a deterministic sign: the largest-magnitude entry of each eigenvector positive
@@ -163,23 +180,24 @@ def _top_eigenvectors(centred: F64, count: int) -> F64:
     return out
 
 
-def learn_basis(samples: F64, spec: PcaSpec) -> tuple[F64, F64]:
-    """PCA of basis samples ``(S, D, 3)``: the mean ``(D, 3)`` and eigenvectors ``(N, D, 3)``.
+def learn_basis(moments: Moments, transform: F64, spec: PcaSpec) -> tuple[F64, F64]:
+    """PCA of the basis samples ``T·x``: the mean ``(D, 3)`` and eigenvectors ``(N, D, 3)``.
 
     ``mrgb``: one PCA over all ``3·D`` values.  ``mycc``: one per YCC channel with
     ``yccplanes`` planes each, placed as Relight interleaves them (:func:`plane_channels`).
     """
-    s, d, _ = samples.shape
-    mean = samples.mean(axis=0)
+    d = transform.shape[0] // 3
+    mean = (transform @ moments.mean).reshape(d, 3)
+    cov = transform @ moments.cov @ transform.T
     if spec.colorspace == "mrgb":
-        vecs = _top_eigenvectors((samples - mean).reshape(s, 3 * d), spec.nplanes)
-        return mean, vecs.reshape(-1, d, 3)
+        return mean, _top_eigenvectors(cov, spec.nplanes).reshape(-1, d, 3)
     channels = plane_channels("mycc", spec.nplanes, spec.yccplanes)
     eig = np.zeros((spec.nplanes, d, 3))
     for k in range(3):
         planes = [q for q, c in enumerate(channels) if c == k]
-        vecs = _top_eigenvectors(samples[:, :, k] - mean[:, k], len(planes))
-        for q, v in zip(planes, vecs, strict=True):
+        idx = np.arange(d) * 3 + k
+        for q, v in zip(planes, _top_eigenvectors(cov[np.ix_(idx, idx)], len(planes)),
+                        strict=True):
             eig[q, :, k] = v
     return mean, eig
 
@@ -196,13 +214,21 @@ def quantise_basis(mean: F64, eig: F64) -> tuple[npt.NDArray[np.uint8], tuple[fl
     return np.stack(rows).astype(np.uint8).reshape(-1), tuple(float(r) for r in ranges)
 
 
+def light_major(pixels: npt.ArrayLike) -> F32:
+    """Light samples ``(n, P, 3)`` (a band's layout) as ``(n·3, P)`` float32 (row ``i·3 + k``)."""
+    x = np.asarray(pixels, np.float32)
+    n, p, _ = x.shape
+    return np.ascontiguousarray(np.swapaxes(x, 1, 2)).reshape(n * 3, p)
+
+
 @dataclass(frozen=True)
 class PcaFit:
     """A learnt basis: the stored :class:`PcaBasis`, the projection and coefficient ranges.
 
-    ``kernel`` ``(N, n·3)`` and ``offset`` ``(N,)`` map a pixel's flattened light samples
-    ``x`` straight to its coefficients ``r = kernel·x − offset`` (the resampling, the colour
-    transform and the projection onto the stored basis, composed once).
+    ``kernel`` ``(N, n·3)`` and ``offset`` ``(N,)`` map a pixel's light samples ``x`` (all the
+    collection's lights; a leave-one-out basis has zero columns for the held-out ones) straight
+    to its coefficients ``r = kernel·x − offset``: the resampling, the colour transform and the
+    projection onto the stored basis, composed once.
     """
 
     basis: PcaBasis
@@ -211,17 +237,18 @@ class PcaFit:
     lo: F64  # (N,) quantisation range of each plane
     hi: F64
 
-    def coefficients(self, pixels: npt.ArrayLike) -> F32:
-        """Float coefficients ``(P, N)`` of pixels' light samples ``(P, n, 3)``."""
-        x = np.asarray(pixels, np.float32)
-        out: F32 = x.reshape(len(x), -1) @ self.kernel.T - self.offset
+    def coefficients(self, x: F32) -> F32:
+        """Float coefficients ``(N, P)`` of light samples ``x`` ``(n·3, P)`` (light_major)."""
+        out: F32 = self.kernel @ x - self.offset[:, None]
         return out
 
     def quantise(self, coefficients: F32) -> npt.NDArray[np.uint8]:
-        """8-bit plane values ``t`` of coefficients ``(…, N)``: ``r = (t/255 − bias)·scale``."""
-        span = (self.hi - self.lo).astype(np.float32)
-        t = (coefficients - self.lo.astype(np.float32)) / span * np.float32(255.0)
-        out: npt.NDArray[np.uint8] = np.clip(np.rint(t), 0, 255).astype(np.uint8)
+        """8-bit plane values ``t`` ``(P, N)`` of coefficients ``(N, P)``:
+        ``r = (t/255 − bias)·scale``."""
+        lo = self.lo.astype(np.float32)[:, None]
+        gain = (np.float32(255.0) / (self.hi - self.lo).astype(np.float32))[:, None]
+        t = np.rint((coefficients - lo) * gain)
+        out: npt.NDArray[np.uint8] = np.clip(t, 0, 255).astype(np.uint8).T
         return out
 
     def scale_bias(self) -> tuple[list[float], list[float]]:
@@ -230,26 +257,38 @@ class PcaFit:
         return ([float(s) for s in scale],
                 [float(-lo / s) for lo, s in zip(self.lo, scale, strict=True)])
 
-    def predict(self, coefficients: F32, light: Sequence[float]) -> F32:
-        """Colours ``(…, 3)`` (clipped to 0–1) of float coefficients under ``light``."""
-        w = self.basis.weights(float(light[0]), float(light[1])).astype(np.float32)
-        out: F32 = np.clip(w[0] + coefficients @ w[1:], 0.0, 1.0)
-        return out
+    def weights(self, light: Sequence[float]) -> F32:
+        """The RGB plane weights ``(N + 1, 3)`` of the stored basis for ``light``."""
+        return self.basis.weights(float(light[0]), float(light[1])).astype(np.float32)
 
 
-def fit_basis(pixels: npt.ArrayLike, lights: npt.ArrayLike, spec: PcaSpec) -> PcaFit:
+def predict(coefficients: F32, weights: F32) -> F32:
+    """Colours ``(3, P)`` (clipped to 0–1) of coefficients ``(N, P)`` under plane weights."""
+    out: F32 = np.clip(weights[0][:, None] + weights[1:].T @ coefficients, 0.0, 1.0)
+    return out
+
+
+def fit_basis(pixels: npt.ArrayLike, lights: npt.ArrayLike, spec: PcaSpec, *,
+              use: npt.NDArray[np.intp] | None = None,
+              moments: Moments | None = None) -> PcaFit:
     """Learn ``spec``'s basis from sampled pixels ``(S, n, 3)`` (0–1) lit by ``lights`` ``(n, 3)``.
 
-    The coefficients are the least-squares projection onto the *stored* (quantised) basis and
-    mean, so the bytes' rounding is compensated where it can be; their quantisation range is
-    the central :data:`RANGE_QUANTILE` of the sample's coefficients.
+    ``use`` restricts the basis to those lights (the leave-one-out basis: the others are
+    neither in its PCA nor among its RBF lights or bilinear resampling); ``moments`` are the
+    sample's, when already computed.  The coefficients are the least-squares projection onto
+    the *stored* (quantised) basis and mean, so the bytes' rounding is compensated where it
+    can be; their quantisation range is the central :data:`RANGE_QUANTILE` of the sample's.
     """
-    x = np.asarray(pixels, np.float64)
-    dirs = np.asarray(lights, np.float64).reshape(-1, 3)
+    x = np.asarray(pixels, np.float32)
+    n = x.shape[1]
+    use = np.arange(n) if use is None else np.asarray(use, np.intp)
+    stats = (moments or Moments.of(x)).restrict(use)
+    dirs = np.asarray(lights, np.float64).reshape(-1, 3)[use]
     dirs = dirs / np.linalg.norm(dirs, axis=1, keepdims=True)
     resample = (resample_matrix(dirs, spec.resolution, spec.sigma)
                 if spec.layer_type == "bilinear" else None)
-    mean, eig = learn_basis(to_samples(x, spec, resample), spec)
+    transform = sample_transform(spec, len(dirs), resample)
+    mean, eig = learn_basis(stats, transform, spec)
     data, ranges = quantise_basis(mean, eig)
     rbf = spec.layer_type == "rbf"
     basis = PcaBasis(spec.layer_type, spec.colorspace, data, ranges,
@@ -258,13 +297,15 @@ def fit_basis(pixels: npt.ArrayLike, lights: npt.ArrayLike, spec: PcaSpec) -> Pc
                      spec.yccplanes)
     values = basis.values()  # (N + 1, D, 3) as stored
     projection = np.linalg.pinv(values[1:].reshape(spec.nplanes, -1).T)  # (N, D·3)
-    kernel = projection @ sample_transform(spec, len(dirs), resample)
+    kernel = np.zeros((spec.nplanes, 3 * n))
+    cols = (use[:, None] * 3 + np.arange(3)).reshape(-1)
+    kernel[:, cols] = projection @ transform
     offset = projection @ values[0].reshape(-1)
     fit = PcaFit(basis, kernel.astype(np.float32), offset.astype(np.float32),
                  np.zeros(spec.nplanes), np.ones(spec.nplanes))
-    coeffs = fit.coefficients(x).astype(np.float64)
+    coeffs = fit.coefficients(light_major(np.swapaxes(x, 0, 1))).astype(np.float64)
     tail = (1.0 - RANGE_QUANTILE) / 2.0
-    lo = np.quantile(coeffs, tail, axis=0)
-    hi = np.quantile(coeffs, 1.0 - tail, axis=0)
+    lo = np.quantile(coeffs, tail, axis=1)
+    hi = np.quantile(coeffs, 1.0 - tail, axis=1)
     hi = np.where(hi - lo > 1e-6, hi, lo + 1e-6)
     return PcaFit(basis, fit.kernel, fit.offset, lo, hi)

@@ -24,43 +24,50 @@ from lanterna.tiler.formats.planes import PlaneGroup, PlaneLayer
 from lanterna.tiler.formats.strip_tiff import StripTiffWriter
 from lanterna.tiler.progress import Progress
 
-from .pca import PcaFit, PcaSpec, fit_basis
+from .pca import Moments, PcaFit, PcaSpec, fit_basis, light_major, predict
 from .pca_sample import sample_pixels
 
 Out = dict[str, npt.NDArray[np.generic]]
+
+
+def band_planes(fit: PcaFit, x: npt.NDArray[np.float32], rows: int, width: int
+                ) -> npt.NDArray[np.uint8]:
+    """The 8-bit planes ``(rows, W, groups, 3)`` of a band's light samples ``x`` ``(n·3, P)``
+    (the planes past ``N`` of the last group are 0)."""
+    t = fit.quantise(fit.coefficients(x))  # (P, N)
+    groups = -(-t.shape[1] // 3)
+    padded = np.zeros((t.shape[0], 3 * groups), np.uint8)
+    padded[:, :t.shape[1]] = t
+    return padded.reshape(rows, width, groups, 3)
 
 
 @dataclass
 class PcaStep:
     """One band ``(n, b, W, 3)`` → its 8-bit planes and the held-out squared errors.
 
-    Picklable (arrays and the fitted bases only), so a Dask worker can run it.
+    Picklable (arrays and the fitted bases only), so a Dask worker can run it.  ``held_weights``
+    are the leave-one-out basis's plane weights at each held-out light.
     """
 
     key: str
     full: PcaFit
     loo: PcaFit | None
-    lights: npt.NDArray[np.float64]
     held: npt.NDArray[np.intp]
-    train: npt.NDArray[np.intp]
+    held_weights: list[npt.NDArray[np.float32]]
     layers: bool = True
 
     def __call__(self, band: npt.NDArray[np.float32]
                  ) -> tuple[Out | None, npt.NDArray[np.float64]]:
         n, b, w, _ = band.shape
-        pixels = np.moveaxis(np.asarray(band, np.float32).reshape(n, b * w, 3), 0, 1)
+        x = light_major(np.asarray(band, np.float32).reshape(n, b * w, 3))
         out: Out | None = None
         if self.layers:
-            t = self.full.quantise(self.full.coefficients(pixels))  # (P, N)
-            groups = -(-t.shape[1] // 3)
-            padded = np.zeros((b * w, 3 * groups), np.uint8)
-            padded[:, :t.shape[1]] = t
-            out = {"planes": padded.reshape(b, w, groups, 3)}
+            out = {"planes": band_planes(self.full, x, b, w)}
         sse = np.zeros(len(self.held))
         if self.loo is not None:
-            coeffs = self.loo.coefficients(pixels[:, self.train])
-            for j, i in enumerate(self.held):
-                diff = self.loo.predict(coeffs, self.lights[i]) - pixels[:, i]
+            coeffs = self.loo.coefficients(x)
+            for j, (i, weights) in enumerate(zip(self.held, self.held_weights, strict=True)):
+                diff = predict(coeffs, weights) - x[3 * i:3 * i + 3]
                 sse[j] = float(np.vdot(diff, diff))
         return out, sse
 
@@ -113,10 +120,11 @@ def prepare_pca(spec: PcaSpec, sample: npt.NDArray[np.float32], lights: npt.NDAr
         raise ValueError(f"{spec.layer_type}: {spec.nplanes} planes need at least "
                          f"{-(-spec.nplanes // 3)} light samples, got {dims}")
     train = np.setdiff1d(np.arange(n), held)
-    full = fit_basis(sample, lights, spec)
-    loo = fit_basis(sample[:, train], lights[train], spec) if len(held) else None
-    step = PcaStep(spec.layer_type, full, loo, np.asarray(lights, np.float64),
-                   np.asarray(held, np.intp), train, layers)
+    moments = Moments.of(sample)
+    full = fit_basis(sample, lights, spec, moments=moments)
+    loo = fit_basis(sample, lights, spec, use=train, moments=moments) if len(held) else None
+    weights = [loo.weights(lights[i]) for i in held] if loo is not None else []
+    step = PcaStep(spec.layer_type, full, loo, np.asarray(held, np.intp), weights, layers)
     return PcaModel(step, scratch, width, height)
 
 
@@ -148,7 +156,8 @@ def fit_pca(images: Any, lights: npt.NDArray[np.float64], spec: PcaSpec, *,
     planes = np.empty((h, w, spec.nplanes), np.uint8)
     for y0 in range(0, h, band_rows):
         band = np.asarray(images[:, y0:y0 + band_rows], np.float32)
-        pixels = np.moveaxis(band.reshape(n, -1, 3), 0, 1)
-        planes[y0:y0 + band.shape[1]] = full.quantise(full.coefficients(pixels)).reshape(
-            band.shape[1], w, -1)
+        rows = band.shape[1]
+        x = light_major(band.reshape(n, rows * w, 3))
+        planes[y0:y0 + rows] = band_planes(full, x, rows, w).reshape(rows, w, -1)[
+            ..., :spec.nplanes]
     return full, planes

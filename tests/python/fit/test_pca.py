@@ -13,7 +13,7 @@ import pytest
 
 from lanterna.cli import main
 from lanterna.tiler.fit.models import leave_one_out, model_table
-from lanterna.tiler.fit.pca import PcaSpec, fit_basis, resample_matrix
+from lanterna.tiler.fit.pca import PcaSpec, fit_basis, light_major, resample_matrix
 from lanterna.tiler.fit.pca_band import fit_pca, prepare_pca
 from lanterna.tiler.fit.pca_sample import sample_pixels
 from lanterna.tiler.formats.pca_model import bilinear_weights
@@ -100,8 +100,16 @@ def test_bilinear_resampling_reproduces_a_smooth_function_of_the_light() -> None
     assert np.allclose(flat, 0.4, atol=1e-9)  # a constant stays one (B's and A's rows sum to 1)
 
 
+def _same_planes(a: npt.NDArray[np.uint8], b: npt.NDArray[np.uint8]) -> None:
+    """Equal but for float32 rounding: the product's summation order follows the band's pixel
+    count (BLAS blocking), so a value at a rounding boundary may move by one step (docs)."""
+    diff = np.abs(a.astype(int) - b.astype(int))
+    assert diff.max() <= 1 and np.mean(diff > 0) < 1e-3, (diff.max(), np.mean(diff > 0))
+
+
 def test_streaming_equals_in_memory(collection: Path, tmp_path: Path) -> None:
-    """The CLI's streamed planes (read in bands of 37 rows from disk) are the in-memory fit's."""
+    """The CLI's streamed planes (read in bands of 37 rows from disk) are the in-memory fit's:
+    the same basis bytes, the same plane bytes within one step in 0.1 % of the values."""
     files, lights = read_lp(collection, collection.parent)
     memory = load_stack(files)
     for model, space in (("rbf", "mrgb"), ("bilinear", "mycc")):
@@ -109,7 +117,7 @@ def test_streaming_equals_in_memory(collection: Path, tmp_path: Path) -> None:
         fit, planes = fit_pca(memory, lights, spec, band_rows=5)
         fit_disk, planes_disk = fit_pca(StackReader(files), lights, spec, band_rows=37)
         assert np.array_equal(fit.basis.basis, fit_disk.basis.basis)
-        assert np.array_equal(planes, planes_disk)
+        _same_planes(planes, planes_disk)
         out = tmp_path / model
         assert main(["fit", str(collection.parent), "--lp", str(collection), "--model", model,
                      "--planes", "7", "--colorspace", space, "--band-rows", "37", "--quiet",
@@ -120,7 +128,7 @@ def test_streaming_equals_in_memory(collection: Path, tmp_path: Path) -> None:
         assert block["colorspace"] == space
         stored = np.concatenate([stored_plane(out, f"{model}_p{g}") for g in range(3)],
                                 axis=-1)
-        assert np.array_equal(stored[..., :7], planes)
+        _same_planes(stored[..., :7], planes)
         assert not stored[..., 7:].any()  # the padding channels X7, X8
 
 
@@ -156,7 +164,7 @@ def test_basis_bytes_follow_relight_quantisation(
     assert all(np.max(np.abs(p - 127)) == 127 for p in planes)
     mean = sample.reshape(len(sample), -1).mean(axis=0)
     assert np.max(np.abs(fit.basis.basis.reshape(7, -1)[0] - np.rint(mean * 255))) <= 1
-    t = fit.quantise(fit.coefficients(sample))
+    t = fit.quantise(fit.coefficients(light_major(np.swapaxes(sample, 0, 1))))
     clipped = np.mean((t == 0) | (t == 255), axis=0)
     assert np.all(clipped <= 0.01) and np.all(clipped > 0)
 
