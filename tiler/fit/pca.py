@@ -262,12 +262,6 @@ class PcaFit:
         return self.basis.weights(float(light[0]), float(light[1])).astype(np.float32)
 
 
-def predict(coefficients: F32, weights: F32) -> F32:
-    """Colours ``(3, P)`` (clipped to 0–1) of coefficients ``(N, P)`` under plane weights."""
-    out: F32 = np.clip(weights[0][:, None] + weights[1:].T @ coefficients, 0.0, 1.0)
-    return out
-
-
 def fit_basis(pixels: npt.ArrayLike, lights: npt.ArrayLike, spec: PcaSpec, *,
               use: npt.NDArray[np.intp] | None = None,
               moments: Moments | None = None) -> PcaFit:

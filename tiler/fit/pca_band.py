@@ -24,7 +24,7 @@ from lanterna.tiler.formats.planes import PlaneGroup, PlaneLayer
 from lanterna.tiler.formats.strip_tiff import StripTiffWriter
 from lanterna.tiler.progress import Progress
 
-from .pca import Moments, PcaFit, PcaSpec, fit_basis, light_major, predict
+from .pca import Moments, PcaFit, PcaSpec, fit_basis, light_major
 from .pca_sample import sample_pixels
 
 Out = dict[str, npt.NDArray[np.generic]]
@@ -45,15 +45,16 @@ def band_planes(fit: PcaFit, x: npt.NDArray[np.float32], rows: int, width: int
 class PcaStep:
     """One band ``(n, b, W, 3)`` → its 8-bit planes and the held-out squared errors.
 
-    Picklable (arrays and the fitted bases only), so a Dask worker can run it.  ``held_weights``
-    are the leave-one-out basis's plane weights at each held-out light.
+    Picklable (arrays and the fitted bases only), so a Dask worker can run it.  The held-out
+    lights' plane weights of the leave-one-out basis are stacked once (``held_weights``
+    ``(h·3, N + 1)``), so a band's predictions at every held-out light are one product.
     """
 
     key: str
     full: PcaFit
     loo: PcaFit | None
     held: npt.NDArray[np.intp]
-    held_weights: list[npt.NDArray[np.float32]]
+    held_weights: npt.NDArray[np.float32]
     layers: bool = True
 
     def __call__(self, band: npt.NDArray[np.float32]
@@ -64,11 +65,13 @@ class PcaStep:
         if self.layers:
             out = {"planes": band_planes(self.full, x, b, w)}
         sse = np.zeros(len(self.held))
-        if self.loo is not None:
+        if self.loo is not None and len(self.held):
             coeffs = self.loo.coefficients(x)
-            for j, (i, weights) in enumerate(zip(self.held, self.held_weights, strict=True)):
-                diff = predict(coeffs, weights) - x[3 * i:3 * i + 3]
-                sse[j] = float(np.vdot(diff, diff))
+            pred = self.held_weights[:, 1:] @ coeffs
+            pred += self.held_weights[:, :1]
+            np.clip(pred, 0.0, 1.0, out=pred)
+            pred -= x[(self.held[:, None] * 3 + np.arange(3)).reshape(-1)]
+            sse = np.einsum("ij,ij->i", pred, pred, dtype=np.float64).reshape(-1, 3).sum(1)
         return out, sse
 
 
@@ -123,7 +126,8 @@ def prepare_pca(spec: PcaSpec, sample: npt.NDArray[np.float32], lights: npt.NDAr
     moments = Moments.of(sample)
     full = fit_basis(sample, lights, spec, moments=moments)
     loo = fit_basis(sample, lights, spec, use=train, moments=moments) if len(held) else None
-    weights = [loo.weights(lights[i]) for i in held] if loo is not None else []
+    weights = (np.concatenate([loo.weights(lights[i]).T for i in held])
+               if loo is not None and len(held) else np.zeros((0, spec.nplanes + 1), np.float32))
     step = PcaStep(spec.layer_type, full, loo, np.asarray(held, np.intp), weights, layers)
     return PcaModel(step, scratch, width, height)
 
