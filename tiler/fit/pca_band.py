@@ -24,7 +24,8 @@ from lanterna.tiler.formats.planes import PlaneGroup, PlaneLayer
 from lanterna.tiler.formats.strip_tiff import StripTiffWriter
 from lanterna.tiler.progress import Progress
 
-from .pca import Moments, PcaFit, PcaSpec, fit_basis, light_major
+from .pca import PcaSpec
+from .pca_basis import Moments, PcaFit, fit_basis, light_major
 from .pca_sample import sample_pixels
 
 Out = dict[str, npt.NDArray[np.generic]]

@@ -13,8 +13,9 @@ import pytest
 
 from lanterna.cli import main
 from lanterna.tiler.fit.models import leave_one_out, model_table
-from lanterna.tiler.fit.pca import PcaSpec, fit_basis, light_major, resample_matrix
+from lanterna.tiler.fit.pca import PcaSpec, resample_matrix
 from lanterna.tiler.fit.pca_band import fit_pca, prepare_pca
+from lanterna.tiler.fit.pca_basis import fit_basis, light_major
 from lanterna.tiler.fit.pca_sample import sample_pixels
 from lanterna.tiler.formats.pca_model import bilinear_weights
 from lanterna.tiler.inputs.lp import read_lp
