@@ -19,6 +19,8 @@ FIT_EXAMPLES = """examples:
       fit three layers in one pass over the images; prints and stores (lanterna.json "quality")
       the PSNR of each model on every 10th light, held out of a second fit in the same pass
   lanterna fit photos/ --lp lights.lp --model hsh --terms 16 -o datasets/obj16
+  lanterna fit photos/ --lp photos/dirs.lp --model rbf --planes 27 -o datasets/obj-rbf
+      Relight's RBF basis (PCA over RGB, 27 planes), as OpenLIME and Relight read it
   lanterna fit photos/ --lp lights.lp --model normals --model ward --fit-space linear -o ds/w
       photometric stereo (with IRLS) and Ward in linear light
   lanterna fit --set IR=ir/ --set R=red/ --set G=green/ --lp dome.lp --model ptm \\
@@ -29,7 +31,8 @@ FIT_EXAMPLES = """examples:
 
 
 def register(sub: SubParsers) -> None:
-    fit = sub.add_parser("fit", help="fit PTM/HSH/normals/Ward layers to multi-light images",
+    fit = sub.add_parser("fit", help="fit PTM/HSH/RBF/bilinear/normals/Ward layers to "
+                                     "multi-light images",
                          epilog=FIT_EXAMPLES, formatter_class=argparse.RawDescriptionHelpFormatter)
     fit.add_argument("images", type=Path, metavar="IMAGES_DIR", nargs="?",
                      help="folder of photographs, one per light (JPEG/PNG/TIFF, 8 or 16 bit, "
@@ -43,10 +46,16 @@ def register(sub: SubParsers) -> None:
                      help="a false-colour layer per model from three bands (same lights) "
                           "as R, G, B; repeatable")
     fit.add_argument("--model", action="append", required=True,
-                     choices=["ptm", "ptm-lrgb", "hsh", "normals", "ward"],
-                     help="model to fit; repeat for several (one pass over the images)")
+                     choices=["ptm", "ptm-lrgb", "hsh", "normals", "ward", "rbf", "bilinear"],
+                     help="model to fit; repeat for several (one pass over the images; rbf "
+                          "and bilinear, PCA bases as Relight's, add a pass sampling pixels)")
     fit.add_argument("--terms", type=int, default=9, choices=[4, 9, 16],
                      help="HSH terms (default 9)")
+    fit.add_argument("--planes", metavar="N",
+                     help="PCA coefficient planes of rbf/bilinear, 1 to 48 (default 18)")
+    fit.add_argument("--colorspace", metavar="SPACE",
+                     help="PCA colour space of rbf/bilinear: mrgb (default, one PCA over RGB) "
+                          "or mycc (one per YCoCg channel)")
     fit.add_argument("--fit-space", choices=["stored", "linear"], default="stored",
                      help="fit normals/Ward to the values as stored (default, as RTI tools do; "
                           "their layers are shaded as stored) or in linear light (sRGB decoded; "
@@ -102,6 +111,7 @@ def run(args: argparse.Namespace) -> int:
                  tile_size=args.tile_size, force=args.force, band_rows=args.band_rows,
                  tiff=args.tiff, scratch=args.scratch, fit_space=args.fit_space,
                  scheduler=args.scheduler, plane_format=plane_format, report=print,
-                 progress=None if args.quiet else Progress, pixel_size_mm=args.pixel_size)
+                 progress=None if args.quiet else Progress, pixel_size_mm=args.pixel_size,
+                 planes=args.planes, colorspace=args.colorspace)
     print_written(args.output)
     return 0

@@ -118,12 +118,19 @@ class _Step:
     held: npt.NDArray[np.intp]
     train: npt.NDArray[np.intp]
     layers: bool
+    extra: Sequence[Callable[[npt.NDArray[np.float32]],
+                             tuple[fb.Out | None, npt.NDArray[np.float64]]]] = ()
+    extra_keys: Sequence[str] = ()
 
     def __call__(self, band: npt.NDArray[np.float32]) -> _StepResult:
         keys = self.full.keys
         outs = self.full.solve(band) if self.layers else None
         sse = {k: np.zeros(len(self.held)) for k in keys}
-        if self.loo is not None:
+        for key, model in zip(self.extra_keys, self.extra, strict=True):
+            out, sse[key] = model(band)
+            if outs is not None and out is not None:
+                outs[key] = out
+        if self.loo is not None and keys:
             fitted = self.loo.solve(band[self.train])
             for k in keys:
                 for j, i in enumerate(self.held):
@@ -133,6 +140,25 @@ class _Step:
                     diff = pred.astype(np.float64) - band[i]
                     sse[k][j] = float(np.vdot(diff, diff))
         return outs, sse
+
+
+class ExtraModel(Protocol):
+    """A model with its own per-band step (the PCA bases, :mod:`~lanterna.tiler.fit.pca_band`).
+
+    ``step(band)`` (picklable, run where the band is solved) returns the band's outputs (or
+    ``None`` without layers) and the squared errors on the held-out lights of ``fit_stream``;
+    ``take`` stores the outputs in order, ``finish`` makes the layer at the end.
+    """
+
+    key: str
+
+    @property
+    def step(self) -> Callable[[npt.NDArray[np.float32]],
+                               tuple[fb.Out | None, npt.NDArray[np.float64]]]: ...
+
+    def take(self, out: fb.Out) -> None: ...
+
+    def finish(self, progress: Callable[[str, int], Progress] | None) -> PlaneLayer: ...
 
 
 class BandRunner(Protocol):
@@ -158,7 +184,8 @@ def fit_stream(images: Images, lights: Lights, keys: Sequence[str], scratch: Pat
                terms: int = 9, band_rows: int | None = None, holdout_every: int = 0,
                linear: bool = False, layers: bool = True,
                progress: Callable[[str, int], Progress] | None = None,
-               runner: BandRunner | None = None) -> FitResult:
+               runner: BandRunner | None = None,
+               extra: Sequence[ExtraModel] = ()) -> FitResult:
     """Fit the models ``keys`` (of :data:`MODEL_KEYS`) in one pass; planes go to ``scratch``.
 
     ``holdout_every > 0`` also fits without every ``holdout_every``-th light (from the first)
@@ -172,7 +199,9 @@ def fit_stream(images: Images, lights: Lights, keys: Sequence[str], scratch: Pat
     ``layers=False`` skips the layers (the report only).  ``runner`` solves the bands elsewhere
     (:class:`~lanterna.tiler.fit.cluster.DaskRunner`); results are consumed in order, so the
     output is the same as the local loop's.  ``progress(label, total)`` makes a
-    progress reporter per stage.
+    progress reporter per stage.  ``extra`` are models with their own band step
+    (:class:`ExtraModel`, e.g. the PCA bases), fitted in the same pass; their held-out lights
+    must be this call's.
 
     Raises
     ------
@@ -190,11 +219,13 @@ def fit_stream(images: Images, lights: Lights, keys: Sequence[str], scratch: Pat
     held = np.arange(0, n, holdout_every) if holdout_every else np.zeros(0, np.intp)
     train = np.setdiff1d(np.arange(n), held)
     loo = _Solver(lights[train], keys, terms, linear) if len(held) else None
-    sse = {k: np.zeros(len(held)) for k in keys}
+    every = [*keys, *(m.key for m in extra)]
+    sse = {k: np.zeros(len(held)) for k in every}
     sinks = Sinks(scratch, w, h)
-    bar = progress("fitting " + ", ".join(keys), h) if progress else None
+    bar = progress("fitting " + ", ".join(every), h) if progress else None
     spans = [(y0, min(h, y0 + rows)) for y0 in range(0, h, rows)]
-    step = _Step(full, loo, held, train, layers)
+    step = _Step(full, loo, held, train, layers, [m.step for m in extra],
+                 [m.key for m in extra])
     if runner is None:
         results: Iterable[_StepResult] = (step(band) for band in _prefetched(images, spans))
     else:
@@ -202,7 +233,9 @@ def fit_stream(images: Images, lights: Lights, keys: Sequence[str], scratch: Pat
     for (_, y1), (outs, band_sse) in zip(spans, results, strict=True):
         if outs is not None:
             sinks.take(outs, keys)
-        for k in keys:
+            for m in extra:
+                m.take(outs[m.key])
+        for k in every:
             sse[k] += band_sse[k]
         if bar:
             bar.update(y1)
@@ -210,8 +243,10 @@ def fit_stream(images: Images, lights: Lights, keys: Sequence[str], scratch: Pat
         images.close()  # the pass is over: free the decoders before quantising and tiling
     space = "linear" if linear else "display"
     fitted = sinks.finish(keys, terms, space, progress) if layers else {}
+    if layers:
+        fitted.update({m.key: m.finish(progress) for m in extra})
     quality = {}
-    for k in keys if len(held) else ():
+    for k in every if len(held) else ():
         scores = [10.0 * math.log10(h * w * 3 / s) if s > 0 else math.inf for s in sse[k]]
         quality[k] = {"heldOut": [int(i) for i in held], "psnr": [round(s, 3) for s in scores],
                       "meanPsnr": round(float(np.mean(scores)), 3),

@@ -24,9 +24,11 @@ from lanterna.tiler.formats.ptm_model import Ptm
 from lanterna.tiler.inputs.stack import StackReader
 
 from .bands import normals_band, ptm_rgb_band
-from .engine import fit_stream
+from .engine import auto_band_rows, fit_stream
 from .hsh import fit_hsh
 from .normals import RANK_WINDOW, SHADOW_FRACTION, check_lights
+from .pca import PCA_LABELS, PcaSpec, parse_spec
+from .pca_band import fit_pca, pca_models
 from .ptm import fit_ptm_lrgb, ptm_design_matrix, ptm_pinv, quantize_coefficients
 from .ward import Ward, fit_ward, quantize_ward
 
@@ -104,8 +106,8 @@ def fit_ptm_rgb(images: Images, lights: Lights, *, band_rows: int = 64) -> Ptm:
 class Model:
     """One fittable model: its CLI name, layer id, label and in-memory fit function.
 
-    ``key`` is its CLI name (a :data:`~lanterna.tiler.fit.engine.MODEL_KEYS` entry), ``terms``
-    the HSH term count.
+    ``key`` is its CLI name (a :data:`~lanterna.tiler.fit.engine.MODEL_KEYS` entry, or
+    ``rbf``/``bilinear`` with their ``pca`` spec), ``terms`` the HSH term count.
     """
 
     key: str
@@ -113,6 +115,7 @@ class Model:
     id: str
     label: str
     fit: Callable[[Images, Lights], Any]
+    pca: PcaSpec | None = None
 
 
 class _NormalsOnce:
@@ -143,11 +146,14 @@ def _fit_ward_model(normals: Callable[[Images, Lights], Normals], images: Images
     return quantize_ward(nrm, kd, ks, alpha)
 
 
-def model_table(terms: int = 9, band_rows: int | None = None) -> dict[str, Model]:
+def model_table(terms: int = 9, band_rows: int | None = None, *, planes: object = None,
+                colorspace: object = None) -> dict[str, Model]:
     """Return the fittable models by CLI name (``hsh`` with ``terms`` terms).
 
     ``band_rows`` (default: each fitter's own) is the number of image rows every fitter
     reads and solves at once, so with a :class:`StackReader` the rows held in memory.
+    ``planes`` and ``colorspace`` (``--planes``, ``--colorspace``) shape the PCA bases
+    ``rbf`` and ``bilinear`` (:func:`~lanterna.tiler.fit.pca.parse_spec`).
     """
     if terms not in HSH_TERMS:
         raise LanternaInputError(None, f"--terms must be 4, 9 or 16, got {terms}")
@@ -166,7 +172,21 @@ def model_table(terms: int = 9, band_rows: int | None = None) -> dict[str, Model
                          normals),
         "ward": Model("ward", terms, "ward", "Lambert + Ward (fitted)",
                       lambda s, lt: _fit_ward_model(normals, s, lt, **kw)),
+        **{key: _pca_model(parse_spec(key, planes, colorspace), terms, kw)
+           for key in PCA_LABELS},
     }
+
+
+def _pca_model(spec: PcaSpec, terms: int, kw: dict[str, Any]) -> Model:
+    label = (f"{PCA_LABELS[spec.layer_type]} {spec.nplanes} planes, {spec.colorspace} "
+             "(fitted)")
+    return Model(spec.layer_type, terms, spec.layer_type, label,
+                 lambda s, lt: fit_pca(s, lt, spec, **kw), spec)
+
+
+def _held(n: int, every: int) -> npt.NDArray[np.intp]:
+    """The held-out lights of :func:`~lanterna.tiler.fit.engine.fit_stream`'s report."""
+    return np.arange(0, n, every) if every else np.zeros(0, np.intp)
 
 
 def psnr(predicted: Stack, actual: Stack) -> float:
@@ -185,6 +205,13 @@ def leave_one_out(images: Images, lights: Lights, model: Model,
     "medianPsnr"}``.
     """
     with tempfile.TemporaryDirectory(prefix="lanterna-loo-") as scratch:
-        result = fit_stream(images, lights, [model.key], Path(scratch), terms=model.terms,
-                            band_rows=band_rows, holdout_every=every, layers=False)
+        keys, extra = [model.key], []
+        if model.pca is not None:
+            n, _, w, _ = images.shape
+            keys, extra = [], pca_models(images, lights, [model.pca], _held(n, every),
+                                         Path(scratch), band_rows=band_rows or
+                                         auto_band_rows(n, w), layers=False)
+        result = fit_stream(images, lights, keys, Path(scratch), terms=model.terms,
+                            band_rows=band_rows, holdout_every=every, layers=False,
+                            extra=extra)
     return result.quality[model.key]

@@ -34,8 +34,10 @@ from lanterna.tiler.progress import Progress
 
 from .bands import LUMINANCE_WEIGHTS
 from .cluster import DaskRunner
-from .engine import fit_stream
+from .engine import auto_band_rows, fit_stream
 from .models import HOLDOUT_EVERY, model_table
+from .pca import PCA_LABELS
+from .pca_band import pca_models
 
 #: Largest memory the open decoders of a collection may hold before the images are re-encoded
 #: as tiled TIFFs (:meth:`~lanterna.tiler.inputs.stack.StackReader.decoder_bytes`).
@@ -101,7 +103,8 @@ def fit_sets(sets: Sequence[ImageSet], models: Sequence[str], out: Path, *,
              plane_format: PlaneFormat = AUTO,
              report: Callable[[str], None] = lambda _: None,
              progress: ProgressFactory | None = None,
-             pixel_size_mm: float | None = None) -> dict[str, Any]:
+             pixel_size_mm: float | None = None, planes: object = None,
+             colorspace: object = None) -> dict[str, Any]:
     """Fit ``models`` to every image set (and fusion) and write them as one dataset ``out``.
 
     One set without a name gives layers named by model (``ptm``, ``hsh9``, …); named sets
@@ -113,10 +116,15 @@ def fit_sets(sets: Sequence[ImageSet], models: Sequence[str], out: Path, *,
     linear light).  ``scheduler`` (a Dask scheduler address, or ``local[:N]``) solves the row
     bands on that cluster (:mod:`~lanterna.tiler.fit.cluster`), with the same result.
     ``plane_format`` (``--plane-format``) is the planes' tile format (fitted planes are a
-    lossless source: ``auto`` stores the smaller of PNG and lossless WebP).  Returns
+    lossless source: ``auto`` stores the smaller of PNG and lossless WebP).  ``planes`` and
+    ``colorspace`` (``--planes``, ``--colorspace``) shape the PCA bases ``rbf``/``bilinear``
+    (:mod:`~lanterna.tiler.fit.pca`; a basis sampling pass precedes the fitting pass).  Returns
     the quality report (also stored as ``quality``).
     """
-    table = model_table(terms, band_rows)
+    if (planes is not None or colorspace is not None) and not set(models) & set(PCA_LABELS):
+        flag = "--planes" if planes is not None else "--colorspace"
+        raise LanternaInputError(None, f"{flag} applies to --model rbf or bilinear only")
+    table = model_table(terms, band_rows, planes=planes, colorspace=colorspace)
     unknown = [m for m in models if m not in table]
     if unknown or not models:
         raise LanternaInputError(None, f"unknown model(s) {', '.join(unknown) or '(none)'}; "
@@ -126,6 +134,7 @@ def fit_sets(sets: Sequence[ImageSet], models: Sequence[str], out: Path, *,
     if band_rows is not None and band_rows < 1:
         raise LanternaInputError(None, f"--band-rows must be at least 1, got {band_rows}")
     keys = list(dict.fromkeys(models))
+    engine_keys = [k for k in keys if table[k].pca is None]
     names = [s.name for s in sets]
     if len(sets) > 1 and None in names:
         raise LanternaInputError(None, "several image sets need a band name each")
@@ -188,10 +197,16 @@ def fit_sets(sets: Sequence[ImageSet], models: Sequence[str], out: Path, *,
             if tag:
                 report(f"{tag.rstrip(': ')}:")
             try:
-                result = fit_stream(stack, lights, keys, folder, terms=terms,
+                n, _, width, _ = stack.shape
+                specs = [spec for k in keys if (spec := table[k].pca) is not None]
+                extra = pca_models(stack, lights, specs,
+                                   np.arange(0, n, held) if held else np.zeros(0, np.intp),
+                                   folder, band_rows=band_rows or auto_band_rows(n, width),
+                                   progress=progress)
+                result = fit_stream(stack, lights, engine_keys, folder, terms=terms,
                                     band_rows=band_rows, holdout_every=held,
                                     linear=fit_space == "linear", progress=progress,
-                                    runner=runner)
+                                    runner=runner, extra=extra)
             except ValueError as err:
                 raise LanternaInputError(lp, f"cannot fit {tag}{err}") from None
             for key in keys:
