@@ -23,6 +23,9 @@ from lanterna.errors import LanternaInputError
 from lanterna.tiler.documents import non_finite
 
 _SYSTEM_ERROR = re.compile(r"system error: (.+)")
+#: An indented JSON array of numbers only (a PCA basis, a light list, scales and biases); the
+#: newline after ``[`` cannot occur inside a JSON string (``json.dumps`` escapes it).
+_NUMBER_ARRAY = re.compile(r"\[\n\s*-?[0-9][-+.eE0-9]*(?:\s*,\s*-?[0-9][-+.eE0-9]*)*\s*\]")
 
 
 def write_error(out: Path, err: OSError | pyvips.Error) -> LanternaInputError:
@@ -52,10 +55,18 @@ def write_errors(out: Path) -> Iterator[None]:
         raise write_error(out, err) from None
 
 
+def _one_line(match: re.Match[str]) -> str:
+    return re.sub(r"\s+", "", match.group(0)).replace(",", ", ")
+
+
 def json_text(doc: Any, path: Path) -> str:
-    """Return ``doc`` as indented JSON, or raise naming ``path`` if a number is not finite."""
+    """Return ``doc`` as indented JSON, or raise naming ``path`` if a number is not finite.
+
+    Arrays of numbers are written on one line: a PCA basis of thousands of bytes (a layer's
+    ``basis``) would otherwise take one line per number and several times the bytes.
+    """
     try:
-        return json.dumps(doc, indent=2, allow_nan=False)
+        return _NUMBER_ARRAY.sub(_one_line, json.dumps(doc, indent=2, allow_nan=False))
     except ValueError:
         found = non_finite(doc)
         if found is None:

@@ -157,6 +157,18 @@ def test_json_text_refuses_infinity_anywhere() -> None:
                                                                                "d": 1e308}
 
 
+def test_json_text_puts_number_arrays_on_one_line_and_leaves_strings_alone() -> None:
+    basis = list(range(0, 256, 3)) * 40  # a PCA basis is thousands of bytes
+    doc = {"basis": basis, "scale": [0.5, -1e-3, 2], "names": ["P0", "P1"],
+           "rows": [[1, 2], [3, 4]], "text": "[1,2] and\n[3,\n 4]", "empty": []}
+    text = json_text(doc, Path("x.json"))
+    assert json.loads(text) == doc
+    lines = text.splitlines()
+    assert sum('"basis": [' in line for line in lines) == 1
+    assert len(lines) < 20  # one line per number would be > 3000
+    assert '"scale": [0.5, -0.001, 2]' in text and '"names": [\n' in text
+
+
 def test_an_export_refuses_nan_in_an_old_dataset(tmp_path: Path) -> None:
     out = tmp_path / "root" / "obj"
     with DatasetWriter(out, name="obj", label="x", width=30, height=20) as ds:
