@@ -62,6 +62,9 @@ def _kind(service: Mapping[str, Any]) -> str:
         return f"PTM {str(service.get('colorspace', '')).upper()}".rstrip()
     if kind == "hsh":
         return f"HSH {service.get('terms')} terms"
+    if kind in ("rbf", "bilinear"):
+        return f"{kind.upper()} {str(service.get('colorspace', '')).upper()} " \
+               f"{service.get('nplanes')} planes"
     if kind == "svbrdf":
         names = {channels[0]: name for name, (channels, _, _) in SVBRDF_MAPS.items()}
         maps = [names.get(plane["channels"][0], "?") for plane in planes]

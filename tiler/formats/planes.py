@@ -13,6 +13,7 @@ from dataclasses import dataclass, field
 import numpy as np
 import numpy.typing as npt
 
+from .pca_model import PCA_TYPES, PcaBasis
 from .ptm_model import PTM_BASIS
 from .strip_tiff import BandImage
 
@@ -55,10 +56,11 @@ class PlaneGroup:
 
 @dataclass(frozen=True)
 class PlaneLayer:
-    """A layer as plane groups (``layer_type`` ``ptm``, ``hsh`` or ``svbrdf``).
+    """A layer as plane groups (``layer_type`` ``ptm``, ``hsh``, ``svbrdf``, ``rbf``, ``bilinear``).
 
     ``group_names`` name the stored images (``{layer_id}_{name}``; default ``p0, p1, …``);
-    ``extra`` carries svbrdf's ``glossLimits``/``inputColorSpace`` and readers' provenance notes.
+    ``extra`` carries svbrdf's ``glossLimits``/``inputColorSpace`` and readers' provenance notes;
+    ``pca`` is the basis of an ``rbf`` / ``bilinear`` layer (its groups ``P0 P1 P2``, …).
     """
 
     layer_type: str
@@ -67,10 +69,14 @@ class PlaneLayer:
     terms: int | None = None
     extra: dict[str, object] = field(default_factory=dict)
     group_names: list[str] = field(default_factory=list)
+    pca: PcaBasis | None = None
 
     def __post_init__(self) -> None:
         if not self.groups:
             raise ValueError("a plane layer needs at least one group")
+        if (self.layer_type in PCA_TYPES) != (self.pca is not None):
+            raise ValueError(f"a {self.layer_type} layer needs a PCA basis exactly when it is "
+                             f"of type {' or '.join(PCA_TYPES)}")
         if not self.group_names:
             object.__setattr__(self, "group_names", [f"p{i}" for i in range(len(self.groups))])
         if len(self.group_names) != len(self.groups):
@@ -84,6 +90,8 @@ class PlaneLayer:
             return {"terms": self.terms}
         if self.layer_type == "svbrdf":
             return {k: self.extra[k] for k in ("glossLimits", "inputColorSpace") if k in self.extra}
+        if self.pca is not None:
+            return self.pca.fields()
         raise ValueError(f"unsupported plane layer type {self.layer_type!r}")
 
     @property

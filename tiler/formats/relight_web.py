@@ -18,6 +18,10 @@ Format (Relight ``src/rti.cpp`` ``Rti::load``/``loadData``, ``src/cli/rtibuilder
 The reader regroups the planes into Lanterna's channel names and order (docs/dataset-format.md):
 PTM ``L0…L5`` / ``R0…R5, G0…G5, B0…B5`` in the basis ``lu², lv², lu·lv, lu, lv, 1`` (a degree-1
 PTM gets zero quadratic channels), HSH one group ``R{k}, G{k}, B{k}`` per term.
+
+- ``ycc`` (``ptm``, ``hsh``): converted exactly into ``rgb`` planes (:mod:`.relight_ycc`).
+- ``rbf`` / ``bilinear`` with ``mrgb`` / ``mycc``: a PCA basis (:mod:`.relight_pca`); the planes
+  are kept as they are, groups ``P0 P1 P2``, … (``nplanes`` need not be a multiple of 3).
 """
 
 from __future__ import annotations
@@ -35,25 +39,38 @@ from lanterna.tiler.documents import read_document
 from lanterna.tiler.fileio import read_input
 from lanterna.tiler.limits import check_pixels, check_quantisation
 
+from .pca_model import PCA_TYPES
 from .planes import PlaneGroup, PlaneLayer
+from .relight_pca import pca_groups, pca_nplanes, read_pca_basis
+from .relight_ycc import ycc_as_rgb
 
 #: Relight's PTM term for each Lanterna PTM coefficient (``lu², lv², lu·lv, lu, lv, 1``).
 PTM_TERM_OF = (3, 5, 4, 1, 2, 0)
-#: Accepted ``nplanes`` per (type, colorspace).
-NPLANES = {("ptm", "lrgb"): (6, 9), ("ptm", "rgb"): (9, 18), ("hsh", "rgb"): (12, 27, 48)}
-_OTHER_TYPES = ("rbf", "bilinear", "bln", "sh", "h", "dmd", "neural", "img")
-_OTHER_COLORSPACES = ("ycc", "mrgb", "mycc")
+#: Accepted ``nplanes`` per (type, colorspace) of the fixed bases (PCA bases: 1 to 48).
+NPLANES = {("ptm", "lrgb"): (6, 9), ("ptm", "rgb"): (9, 18), ("ptm", "ycc"): (9, 18),
+           ("hsh", "rgb"): (12, 27, 48), ("hsh", "ycc"): (12, 27, 48)}
+#: The colour spaces of each supported type.
+COLORSPACES = {"ptm": ("rgb", "lrgb", "ycc"), "hsh": ("rgb", "ycc"),
+               "rbf": ("mrgb", "mycc"), "bilinear": ("mrgb", "mycc")}
+#: Types Relight or OpenLIME know that Lanterna does not read, and why.
+_OTHER_TYPES = {"sh": "plain spherical harmonics", "h": "Relight's experimental H-basis",
+                "dmd": "Relight's unfinished DMD basis", "bln": "OpenLIME's shader name; the "
+                "info.json type is 'bilinear'", "neural": "a neural RTI", "img": "an image set"}
+_SUPPORTED = ", ".join(COLORSPACES)
+_ALL_COLORSPACES = ("rgb", "lrgb", "ycc", "mrgb", "mycc")
 
 
 def read_relight(folder: str | Path) -> PlaneLayer:
-    """Read a Relight web-format folder (or its ``info.json``) of type ``ptm`` or ``hsh``.
+    """Read a Relight web-format folder (or its ``info.json``): ptm, hsh, rbf or bilinear.
 
     Returns
     -------
     PlaneLayer
-        ``layer_type`` ``"ptm"`` (``colorspace`` ``"lrgb"`` or ``"rgb"``) or ``"hsh"``
-        (``terms`` 4, 9 or 16), groups in Lanterna's channel order with the folder's bytes and
-        per-channel scale/bias. ``extra`` records the source ``nplanes`` and ``quality``, and
+        ``layer_type`` ``"ptm"`` (``colorspace`` ``"lrgb"`` or ``"rgb"``; ``ycc`` is converted
+        to ``rgb``) or ``"hsh"`` (``terms`` 4, 9 or 16), groups in Lanterna's channel order with
+        the folder's bytes and per-channel scale/bias; or ``"rbf"`` / ``"bilinear"``
+        (``colorspace`` ``"mrgb"`` or ``"mycc"``) with groups ``P0 P1 P2``, … and the basis in
+        ``pca``. ``extra`` records the source ``nplanes`` and ``quality``, and
         ``pixelSizeMM`` when info.json states ``pixelSizeInMM`` (the physical size of a pixel).
 
     Raises
@@ -71,17 +88,28 @@ def read_relight(folder: str | Path) -> PlaneLayer:
     info = read_document(info_path, "relight-info")
     rtype, colorspace, width, height, nplanes = _check_info(info, info_path)
     scale, bias = _quantisation(info, nplanes, info_path)
+    pca = (read_pca_basis(info, info_path, rtype, colorspace, nplanes)
+           if rtype in PCA_TYPES else None)
     ext = _plane_format(info, info_path)
     check_pixels(info_path, width, height, "the Relight image")
     # every plane's header first (sizes compared, nothing decoded), then the pixels
-    opened = [_open_plane(info_path.parent, i, ext, width, height) for i in range(nplanes // 3)]
+    opened = [_open_plane(info_path.parent, i, ext, width, height)
+              for i in range((nplanes + 2) // 3)]
     planes = np.stack([c for path, image in opened for c in _decode_plane(path, image)])
+    planes = planes[:nplanes]
     lossy = ext == "jpg"  # the planes are JPEG decodes
     extra: dict[str, object] = {"source": "relight", "nplanes": nplanes}
     if isinstance(info.get("quality"), int):
         extra["quality"] = info["quality"]
     if "pixelSizeInMM" in info:
         extra["pixelSizeMM"] = float(info["pixelSizeInMM"])
+    if pca is not None:
+        return PlaneLayer(rtype, pca_groups(planes, scale, bias, lossy), colorspace, None, extra,
+                          pca=pca)
+    if colorspace == "ycc":
+        planes, scale, bias = ycc_as_rgb(rtype, planes, scale, bias)
+        colorspace = "rgb"
+        extra["sourceColorspace"] = "ycc"
     if rtype == "hsh":
         rgb = [list(range(3 * k, 3 * k + 3)) for k in range(nplanes // 3)]
         groups = [PlaneGroup([f"R{k}", f"G{k}", f"B{k}"], _stack(planes, rgb[k]),
@@ -116,20 +144,22 @@ def _int_field(info: dict[str, Any], key: str, path: Path) -> int:
 def _check_info(info: dict[str, Any], path: Path) -> tuple[str, str, int, int, int]:
     rtype, colorspace = info.get("type"), info.get("colorspace")
     if rtype in _OTHER_TYPES:
-        raise LanternaInputError(path, f"unsupported Relight type {rtype!r}; only ptm and hsh "
-                                 "are supported")
-    if rtype not in ("ptm", "hsh"):
-        raise LanternaInputError(path, f"unknown Relight type {rtype!r}; expected ptm or hsh")
-    if colorspace in _OTHER_COLORSPACES:
-        raise LanternaInputError(path, f"unsupported colorspace {colorspace!r}; only rgb and lrgb "
-                                 "are supported")
-    if colorspace not in ("rgb", "lrgb"):
-        raise LanternaInputError(path, f"unknown colorspace {colorspace!r}; expected rgb or lrgb")
-    if rtype == "hsh" and colorspace == "lrgb":
-        raise LanternaInputError(path, "hsh with colorspace lrgb is not supported (export rgb)")
+        raise LanternaInputError(path, f"unsupported Relight type {rtype!r} "
+                                 f"({_OTHER_TYPES[str(rtype)]}); supported: {_SUPPORTED}")
+    if rtype not in COLORSPACES:
+        raise LanternaInputError(path, f"unknown Relight type {rtype!r}; supported: "
+                                 f"{_SUPPORTED}")
+    if colorspace not in _ALL_COLORSPACES:
+        raise LanternaInputError(path, f"unknown colorspace {colorspace!r}; supported: "
+                                 f"{', '.join(_ALL_COLORSPACES)}")
+    if colorspace not in COLORSPACES[rtype]:
+        raise LanternaInputError(path, f"{rtype} with colorspace {colorspace} is not supported; "
+                                 f"{rtype} takes {' or '.join(COLORSPACES[rtype])}")
     width, height = _int_field(info, "width", path), _int_field(info, "height", path)
     if width <= 0 or height <= 0:
         raise LanternaInputError(path, f"image size must be positive, got {width}x{height}")
+    if rtype in PCA_TYPES:
+        return rtype, colorspace, width, height, pca_nplanes(info, path, colorspace)
     nplanes = _int_field(info, "nplanes", path)
     allowed = NPLANES[(rtype, colorspace)]
     if nplanes not in allowed:
@@ -144,7 +174,9 @@ def _quantisation(info: dict[str, Any], nplanes: int, path: Path) -> tuple[list[
     materials = info.get("materials")
     if isinstance(materials, list) and materials:
         if len(materials) > 1:
-            raise LanternaInputError(path, f"{len(materials)} materials; only one is supported")
+            raise LanternaInputError(path, f"{len(materials)} materials; only one is supported "
+                                     "(Relight's multi-material output, with segments.png, "
+                                     "is not)")
         where, holder = "materials[0]", materials[0]
         if not isinstance(holder, dict):
             raise LanternaInputError(path, "materials[0] must be a JSON object")

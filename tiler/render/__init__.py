@@ -22,11 +22,13 @@ from .modes import (
     resolve_params,
     surface,
 )
+from .pca import pca_surface
 from .ptm import ptm_normals
 from .shading import linear_to_srgb, luma, post, srgb_to_linear
 
 __all__ = [
     "MODES", "PARAMETERS", "albedo", "applicable_modes", "box_filter", "box_pass", "f3", "f5",
     "hsh_basis", "hsh_normals", "level_channels", "level_image", "linear_to_srgb", "luma",
-    "normals", "post", "ptm_normals", "render", "resolve_params", "srgb_to_linear", "surface",
+    "normals", "pca_surface", "post", "ptm_normals", "render", "resolve_params",
+    "srgb_to_linear", "surface",
 ]

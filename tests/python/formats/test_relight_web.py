@@ -222,10 +222,15 @@ def _edit(info: dict[str, Any], **changes: Any) -> dict[str, Any]:
 BASE = info_json("ptm", "rgb", 18, [1.0] * 18, [0.0] * 18)
 INFO_ERRORS: dict[str, tuple[dict[str, Any], str]] = {
     "unknown type": (_edit(BASE, type="xyz"), "unknown Relight type 'xyz'"),
-    "rbf": (_edit(BASE, type="rbf"), "unsupported Relight type 'rbf'"),
+    "sh": (_edit(BASE, type="sh"), "unsupported Relight type 'sh' (plain spherical harmonics); "
+           "supported: ptm, hsh, rbf, bilinear"),
+    "rbf rgb": (_edit(BASE, type="rbf"), "rbf with colorspace rgb is not supported; rbf takes "
+                "mrgb or mycc"),
     "no type": (_edit(BASE, type=None), 'info.json: needs "type"'),
-    "unknown colorspace": (_edit(BASE, colorspace="cmyk"), "unknown colorspace 'cmyk'"),
-    "mycc": (_edit(BASE, colorspace="mycc"), "unsupported colorspace 'mycc'"),
+    "unknown colorspace": (_edit(BASE, colorspace="cmyk"), "unknown colorspace 'cmyk'; supported: "
+                           "rgb, lrgb, ycc, mrgb, mycc"),
+    "ptm mycc": (_edit(BASE, colorspace="mycc"), "ptm with colorspace mycc is not supported; "
+                 "ptm takes rgb or lrgb or ycc"),
     "hsh lrgb": (_edit(BASE, type="hsh", colorspace="lrgb"), "hsh with colorspace lrgb"),
     "bad nplanes": (_edit(BASE, nplanes=12), "ptm rgb needs nplanes 9 or 18, got 12"),
     "hsh nplanes": (_edit(BASE, type="hsh", nplanes=18), "hsh rgb needs nplanes 12 or 27 or 48"),

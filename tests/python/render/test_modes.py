@@ -92,7 +92,7 @@ def test_parameters_are_checked() -> None:
     with pytest.raises(ValueError, match="unit disk"):
         render(COLUMNS[5], channels_for(COLUMNS[5]), (0.9, 0.9))
     with pytest.raises(ValueError, match="layerType"):
-        applicable_modes({"layerType": "rbf"})
+        applicable_modes({"layerType": "neural"})
 
 
 def test_post_step_gamma_then_brightness() -> None:
