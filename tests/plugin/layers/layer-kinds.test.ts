@@ -38,8 +38,9 @@ function contractTable(): Map<ShadingClass, RenderMode[]> {
   const rows = section.split('\n').filter((line) => line.startsWith('|')).map((line) => line.split('|').slice(1, -1)
     .map((cell) => cell.trim()));
   const [header = [], , ...body] = rows;
-  expect(header).toEqual(['mode', 'ptm lrgb', 'ptm rgb', 'hsh', 'svbrdf (with shape)', 'svbrdf without shape, image']);
-  const columns: ShadingClass[] = ['ptm-lrgb', 'ptm-rgb', 'hsh', 'svbrdf', 'flat'];
+  expect(header).toEqual(['mode', 'ptm lrgb', 'ptm rgb', 'hsh', 'rbf', 'bilinear', 'svbrdf (with shape)',
+    'svbrdf without shape, image']);
+  const columns: ShadingClass[] = ['ptm-lrgb', 'ptm-rgb', 'hsh', 'rbf', 'bilinear', 'svbrdf', 'flat'];
   const table = new Map(columns.map((c): [ShadingClass, RenderMode[]] => [c, []]));
   for (const [name = '', ...cells] of body) {
     const mode = name.replace(/`/g, '') as RenderMode;

@@ -1,5 +1,5 @@
 /**
- * The row shared by the PCA layer kinds (`rbf`, `bilinear`): HSH's modes and column, one program
+ * The row shared by the PCA layer kinds (`rbf`, `bilinear`): HSH's modes (their own columns), one program
  * per plane-group count, the light's RGB plane weights per frame and the normal-estimate weights
  * fixed per layer. Pure: no DOM, no GL.
  */
@@ -34,7 +34,7 @@ export const PCA_GLSL: KindGlsl = {
 export function pcaKind(name: 'rbf' | 'bilinear'): LayerKind {
   return {
     name,
-    shading: 'hsh',
+    shading: name,
     modes: HSH_MODES,
     lit: true,
     previewPlane: 0,
