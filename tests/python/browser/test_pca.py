@@ -9,7 +9,9 @@ in ``test_pca_realdata.py``.
 
 from __future__ import annotations
 
-from collections.abc import Iterator
+import json
+import re
+from collections.abc import Callable, Iterator
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
@@ -159,3 +161,40 @@ def test_the_light_moves_the_colour(run: Run) -> None:
     for layer in run.blocks:
         (_, a, _), (_, b, _) = run.results[(layer, "color")]
         assert np.abs(a - b).mean() > 5, layer
+
+
+def test_a_bad_pca_block_is_a_one_line_message_naming_the_field(
+        tmp_path: Path, live_server: Callable[[Path], LiveServer]) -> None:
+    rng = np.random.default_rng(3)
+    basis = lambertian_basis(rng, "rbf", "mrgb", 4)
+    with DatasetWriter(tmp_path / "root" / "bad", name="bad", label="Bad", width=W,
+                       height=H) as ds:
+        add_planes_layer(ds, pca_layer(rng, basis), layer_id="coin", label="coin")
+    server = live_server(tmp_path / "root")
+    url = f"{server.url}/datasets/bad/manifest.json"
+    manifest = json.loads((tmp_path / "root" / "bad" / "manifest.json").read_text())
+    size = len(basis.basis)
+    blocks = find_relight_blocks(manifest)
+    assert [b["layerType"] for b in blocks] == ["rbf"]
+    blocks[0]["basis"] = blocks[0]["basis"][:-1]
+    routes = [{"match": f"^{re.escape(url)}$", "status": 200, "body": json.dumps(manifest),
+               "contentType": "application/json"}]
+    result = browser.open_failing(f"{server.url}/viewer/?manifest={url}", tmp_path / "page",
+                                  options={"routes": routes,
+                                           "allowConsoleErrors": [r"^\[lanterna\]"]})
+    assert result["readyError"]["name"] == "RelightServiceError", result["readyError"]
+    problem = result["errorBox"]["problem"] or ""
+    assert f"coin.basis: {size - 1} values, expected {size}" in problem, problem
+    assert "\n" not in result["readyError"]["message"]
+    assert result["pageErrors"] == []
+
+
+def find_relight_blocks(doc: Any) -> list[dict[str, Any]]:
+    """Every LanternaRelight block of a manifest."""
+    if isinstance(doc, dict):
+        if doc.get("type") == "LanternaRelight":
+            return [doc]
+        return [b for v in doc.values() for b in find_relight_blocks(v)]
+    if isinstance(doc, list):
+        return [b for v in doc for b in find_relight_blocks(v)]
+    return []
