@@ -15,6 +15,16 @@ import {
 
 const I = U_PARAM.lightIntensity;
 
+/** Most plane groups of a PCA layer (48 planes). */
+const MAX_GROUPS = 16;
+
+/**
+ * `step(g)` for every plane group the layer has, unrolled at compile time (`#if PCA_GROUPS > g`):
+ * constant texture layers and uniform indices (measured faster than a loop in SwiftShader).
+ */
+const unrolled = (step: (g: number) => string): string => Array.from({ length: MAX_GROUPS },
+  (_, g) => `#if PCA_GROUPS > ${g}\n  ${step(g)}\n#endif`).join('\n');
+
 /** Layer functions of a PCA program (needs `PCA_GROUPS` and `PCA_SLOTS`). */
 export const PCA_FRAGMENT_BODY = /* glsl */ `
 uniform vec3 ${U_PCA_WEIGHTS}[PCA_SLOTS];
@@ -22,16 +32,16 @@ uniform vec3 ${U_PCA_NORMAL_WEIGHTS}[PCA_SLOTS];
 uniform vec3 ${U_PCA_ALBEDO_WEIGHTS}[PCA_SLOTS];
 uniform mat3 ${U_HSH_NORMAL_INV};
 
-// Σ over the coefficients of weights w: w[0] + Σ_q r_q·w[q + 1], for one group's r
+// Σ over the coefficients of weights w: w[0] + Σ_q r_q·w[q + 1], for group g's r
 #define PCA_ADD(acc, w, r, g) acc += r.x * w[3 * g + 1] + r.y * w[3 * g + 2] + r.z * w[3 * g + 3]
+#define PCA_COLOR_STEP(g) { vec3 r = lanterna_plane(g); PCA_ADD(c, ${U_PCA_WEIGHTS}, r, g); }
+#define PCA_SUMS_STEP(g) { vec3 r = lanterna_plane(g); PCA_ADD(c, ${U_PCA_WEIGHTS}, r, g); \\
+  PCA_ADD(i3, ${U_PCA_NORMAL_WEIGHTS}, r, g); PCA_ADD(a, ${U_PCA_ALBEDO_WEIGHTS}, r, g); }
 
 // the colour under the light (intensity 1)
 vec3 pca_color() {
   vec3 c = ${U_PCA_WEIGHTS}[0];
-  for (int g = 0; g < PCA_GROUPS; g++) {
-    vec3 r = lanterna_plane(g);
-    PCA_ADD(c, ${U_PCA_WEIGHTS}, r, g);
-  }
+${unrolled((g) => `PCA_COLOR_STEP(${g})`)}
   return c;
 }
 
@@ -40,12 +50,7 @@ void pca_sums(out vec3 c, out vec3 i3, out vec3 a) {
   c = ${U_PCA_WEIGHTS}[0];
   i3 = ${U_PCA_NORMAL_WEIGHTS}[0];
   a = ${U_PCA_ALBEDO_WEIGHTS}[0];
-  for (int g = 0; g < PCA_GROUPS; g++) {
-    vec3 r = lanterna_plane(g);
-    PCA_ADD(c, ${U_PCA_WEIGHTS}, r, g);
-    PCA_ADD(i3, ${U_PCA_NORMAL_WEIGHTS}, r, g);
-    PCA_ADD(a, ${U_PCA_ALBEDO_WEIGHTS}, r, g);
-  }
+${unrolled((g) => `PCA_SUMS_STEP(${g})`)}
 }
 
 // g = M⁻¹ I, n = g/‖g‖, (0, 0, 1) when ‖g‖ < 1e-6
