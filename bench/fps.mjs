@@ -7,7 +7,7 @@
 //   .venv/bin/lanterna serve /tmp/lbench --port 8766 &
 //   node bench/fps.mjs --server http://127.0.0.1:8766 [--seconds 4] [--rounds 3] [--json out.json]
 //
-// Options: --dataset NAME (bench), --layers a,b,… (ptm_lrgb,ptm_rgb,hsh9,hsh16,svbrdf,image),
+// Options: --dataset NAME (bench), --layers a,b,… (ptm_lrgb,ptm_rgb,hsh9,hsh16,svbrdf,rbf27,bilinear18,image),
 // --reference ID (plain), --width/--height (1920×1080).
 // --modes color,unsharpNormals,… : instead, each layer in each mode against the same layer in the
 // first mode (interleaved), e.g. the unsharp modes against colour.
@@ -29,7 +29,7 @@ const { values: opt } = parseArgs({
   options: {
     server: { type: 'string', default: 'http://127.0.0.1:8766' },
     dataset: { type: 'string', default: 'bench' },
-    layers: { type: 'string', default: 'ptm_lrgb,ptm_rgb,hsh9,hsh16,svbrdf,image' },
+    layers: { type: 'string', default: 'ptm_lrgb,ptm_rgb,hsh9,hsh16,svbrdf,rbf27,bilinear18,image' },
     reference: { type: 'string', default: 'plain' },
     seconds: { type: 'string', default: '4' },
     rounds: { type: 'string', default: '3' },

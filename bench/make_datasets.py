@@ -3,9 +3,11 @@
     .venv/bin/python bench/make_datasets.py ROOT [--width 4096 --height 3072]
 
 Writes ROOT/bench with layers (in order) ``ptm_lrgb``, ``ptm_rgb``, ``hsh9``, ``hsh16``,
-``svbrdf``, ``image`` (RGB JPEG), ``mono`` (single-band ``Y``) and ``plain`` (the colour image as
-PNG, the benchmark's reference). Coefficients are analytic fits of a Lambertian tablet (not camera
-captures): good enough to look plausible and to measure speed.
+``svbrdf``, ``rbf27`` and ``bilinear18`` (PCA mrgb, shaped like Relight's defaults: 27 planes over
+116 acquisition lights, 18 planes on a 9 × 9 grid), ``image`` (RGB JPEG), ``mono`` (single-band
+``Y``) and ``plain`` (the colour image as PNG, the benchmark's reference). Coefficients are analytic
+fits of a Lambertian tablet (not camera captures): good enough to look plausible and to measure
+speed.
 """
 
 from __future__ import annotations
@@ -20,6 +22,7 @@ import pyvips
 from lanterna.tiler.dataset.layers import (
     add_hsh_layer,
     add_image_layer,
+    add_planes_layer,
     add_ptm_layer,
     add_svbrdf_layer,
 )
@@ -28,6 +31,8 @@ from lanterna.tiler.demo.tablet import make_demo_object
 from lanterna.tiler.formats.hsh_basis import hsh_weights
 from lanterna.tiler.formats.hsh_model import Hsh
 from lanterna.tiler.formats.layouts import encode_normals
+from lanterna.tiler.formats.pca_model import PcaBasis, plane_channel_names
+from lanterna.tiler.formats.planes import PlaneGroup, PlaneLayer
 from lanterna.tiler.formats.ptm_model import Ptm
 
 
@@ -80,6 +85,52 @@ def hsh_field(n: np.ndarray, albedo: np.ndarray, terms: int) -> Hsh:
     return Hsh(q, span.astype(np.float32), lo.astype(np.float32))
 
 
+def dome_lights(count: int) -> np.ndarray:
+    """``count`` unit lights spread over the hemisphere (a golden-angle spiral, z ≥ 0.15)."""
+    i = np.arange(count) + 0.5
+    z = 0.15 + 0.85 * (1 - i / count)
+    phi = i * math.pi * (3 - math.sqrt(5))
+    r = np.sqrt(1 - z * z)
+    return np.stack([r * np.cos(phi), r * np.sin(phi), z], axis=-1)
+
+
+def octahedral_samples(res: int) -> np.ndarray:
+    """The directions of Relight's bilinear grid samples (``x + y·R``), the inverse of its map."""
+    y, x = np.mgrid[0:res, 0:res] / (res - 1) * 2 - 1
+    u, v = (x - y) / 2, (x + y) / 2
+    d = np.stack([u, v, np.maximum(1 - np.abs(u) - np.abs(v), 0)], -1).reshape(-1, 3)
+    out: np.ndarray = d / np.maximum(np.linalg.norm(d, axis=1, keepdims=True), 1e-9)
+    return out
+
+
+def pca_lambert_layer(layer_type: str, nplanes: int, n: np.ndarray, albedo: np.ndarray
+                      ) -> PlaneLayer:
+    """A PCA mrgb layer of ``albedo_k·(n·l)``: plane ``3·axis + k`` holds ``albedo_k·n_axis`` and
+    its basis row ``l_axis`` in channel ``k``; the remaining planes are zero (fetched all the same).
+    """
+    rbf = layer_type == "rbf"
+    samples = dome_lights(116) if rbf else octahedral_samples(9)
+    rows = np.zeros((nplanes + 1, len(samples), 3))
+    for axis in range(3):
+        for k in range(3):
+            rows[1 + 3 * axis + k, :, k] = samples[:, axis]
+    ranges = tuple([127.0] * nplanes)
+    basis = np.concatenate([rows[:1] * 255, 127 + rows[1:] * 127]).round().astype(np.uint8)
+    groups = []
+    for g, names in enumerate(plane_channel_names(nplanes)):
+        q = np.arange(3 * g, 3 * g + 3)
+        coef = np.zeros(n.shape[:2] + (3,), np.float32)
+        for c, plane in enumerate(q):
+            if plane < 9:
+                coef[..., c] = albedo[..., plane % 3] * n[..., plane // 3]
+        t = np.round((coef / 2 + 0.5) * 255).clip(0, 255).astype(np.uint8)
+        groups.append(PlaneGroup(list(names), t, [2.0, 2.0, 2.0], [0.5, 0.5, 0.5]))
+    pca = PcaBasis(layer_type, "mrgb", basis.ravel(), ranges,
+                   lights=tuple(float(v) for v in samples.ravel()) if rbf else None,
+                   sigma=0.125 if rbf else None, resolution=None if rbf else 9)
+    return PlaneLayer(layer_type, groups, pca=pca)
+
+
 def build(root: Path, width: int, height: int) -> None:
     obj = make_demo_object(width, height)
     n, albedo = obj.normals, obj.albedo
@@ -114,6 +165,9 @@ def build(root: Path, width: int, height: int) -> None:
             layer_id="svbrdf",
             label="Shape and material",
         )
+        for layer_id, layer_type, nplanes in (("rbf27", "rbf", 27), ("bilinear18", "bilinear", 18)):
+            add_planes_layer(ds, pca_lambert_layer(layer_type, nplanes, n, albedo),
+                             layer_id=layer_id, label=f"{layer_type} {nplanes} (PCA mrgb)")
         add_image_layer(
             ds, pyvips.Image.new_from_array(colour), layer_id="image", label="Image (JPEG)"
         )

@@ -30,6 +30,9 @@ export { ShaderError } from './gl/compile';
 export { ptmWeights, relightPtmPixel, BASES, PTM_BASIS_TERMS, type LightBasis } from './math/ptm-basis';
 export { hshWeights } from './math/hsh-basis';
 export {
+  pcaPlaneWeights, pcaWeights, rbfWeights, bilinearWeights, MAX_PCA_PLANES, type PcaBasis, type PcaColorspace, type PcaType,
+} from './math/pca-weights';
+export {
   lightFromPointer, lightFromProjection, nudgeLight, OVERHEAD_LIGHT, type Light, type NudgeDirection,
   lightAngles, lightFromAngles, type LightAngles,
 } from './math/light';

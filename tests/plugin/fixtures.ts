@@ -1,4 +1,5 @@
 /** Shared test fixtures: a manifest and info.json shaped like the contract's examples. */
+import { pcaChannelNames } from '../../plugin/src/iiif/pca-block';
 
 const BASE = 'http://127.0.0.1:8000/datasets/ushabti';
 
@@ -118,4 +119,26 @@ export function manifestWithAnnotations(pages: unknown[]): Record<string, unknow
 /** An overlay annotation page of `layer`. */
 export function overlayPage(layer: string, items: unknown[]): Record<string, unknown> {
   return { id: `${BASE}/canvas/1/overlays/${layer}`, type: 'AnnotationPage', label: { en: [`Annotations: ${layer}`] }, items };
+}
+
+/** A valid PCA block: N planes, rbf over `d` lights or bilinear at resolution `res`. */
+export function pcaBlock(layerType: 'rbf' | 'bilinear', n: number, extra: Record<string, unknown> = {},
+  res = 3, d = 5): Record<string, unknown> {
+  const dims = layerType === 'rbf' ? d : res * res;
+  const lights = Array.from({ length: d }, (_, i) => {
+    const phi = (2 * Math.PI * i) / d;
+    return [0.5 * Math.cos(phi), 0.5 * Math.sin(phi), Math.sqrt(0.75)];
+  }).flat();
+  return {
+    type: 'LanternaRelight', profile: 'urn:lanterna:relight:1', id: 'http://h/layers/coin.json', layerType,
+    colorspace: 'mrgb', nplanes: n, width: 8, height: 8,
+    basis: Array.from({ length: (n + 1) * dims * 3 }, (_, i) => (i * 37) % 256),
+    range: Array.from({ length: n }, (_, q) => 1 + q),
+    ...(layerType === 'rbf' ? { lights, sigma: 0.125 } : { resolution: res }),
+    planes: pcaChannelNames(n).map((channels, i) => ({
+      service: { id: `http://h/p${i}` }, channels, scale: channels.map((c) => (c.startsWith('X') ? 0 : 2)),
+      bias: channels.map(() => 0),
+    })),
+    ...extra,
+  };
 }

@@ -23,6 +23,12 @@ export const U_HALF = 'u_half';
 export const U_HSH_NORMAL_WEIGHTS = 'u_hshNormalWeights';
 /** mat3: inverse of the normal-estimate light matrix. */
 export const U_HSH_NORMAL_INV = 'u_hshNormalInv';
+/** vec3[PCA_SLOTS]: RGB plane weights W[p] of the light (PCA layers: `c = W[0] + Σ_q r_q·W[q + 1]`). */
+export const U_PCA_WEIGHTS = 'u_pcaWeights';
+/** vec3[PCA_SLOTS]: per plane, the r + g + b weights under the three normal-estimate lights. */
+export const U_PCA_NORMAL_WEIGHTS = 'u_pcaNormalWeights';
+/** vec3[PCA_SLOTS]: per plane, the sum of the three normal-estimate lights' RGB weights (albedo). */
+export const U_PCA_ALBEDO_WEIGHTS = 'u_pcaAlbedoWeights';
 /** vec2: svbrdf glossLimits. */
 export const U_GLOSS_LIMITS = 'u_glossLimits';
 /** sampler2D: the box-filtered (q·a, a) of the unsharp modes (combine stage). */

@@ -2,10 +2,12 @@
  * Types and validation of the `LanternaRelight` service block (see `docs/dataset-format.md`).
  * Pure: no DOM, no GL, no network.
  */
+import type { PcaBasis } from '../math/pca-weights';
 import { BASES } from '../math/ptm-basis';
 import { RelightServiceError } from './errors';
 import { embeddedImage, type EmbeddedImage } from './image-info';
 import { isRecord } from './json';
+import { isPcaType, parsePcaBlock, pcaChannelNames } from './pca-block';
 
 /** Service `type` of the relight service block. */
 export const RELIGHT_SERVICE_TYPE = 'LanternaRelight';
@@ -13,7 +15,9 @@ export const RELIGHT_SERVICE_TYPE = 'LanternaRelight';
 export const RELIGHT_PROFILE = 'urn:lanterna:relight:1';
 
 /** Supported layer types. */
-export type LayerType = 'ptm' | 'hsh' | 'svbrdf' | 'image';
+export type LayerType = 'ptm' | 'hsh' | 'svbrdf' | 'image' | 'rbf' | 'bilinear';
+/** Every supported layer type. */
+export const LAYER_TYPES: readonly LayerType[] = ['ptm', 'hsh', 'svbrdf', 'image', 'rbf', 'bilinear'];
 /** Colour spaces of a PTM layer. */
 export type PtmColorspace = 'lrgb' | 'rgb';
 /** How an svbrdf layer's kd and ks are encoded. */
@@ -58,7 +62,7 @@ export interface RelightLayer {
   /** Service id (URL of the layer document). */
   readonly id: string;
   readonly layerType: LayerType;
-  /** `lrgb` or `rgb` for PTM; `rgb` for the other types. */
+  /** `lrgb` or `rgb` for PTM; `rgb` for the other types (rbf/bilinear: their colour space is in `pca`). */
   readonly colorspace: PtmColorspace;
   readonly width: number;
   readonly height: number;
@@ -69,6 +73,8 @@ export interface RelightLayer {
   readonly glossLimits: readonly [number, number];
   /** svbrdf: encoding of kd and ks. */
   readonly inputColorSpace: InputColorSpace;
+  /** rbf, bilinear: the decoded PCA basis and its colour space; absent for the other types. */
+  readonly pca?: PcaBasis;
 }
 
 /**
@@ -151,7 +157,7 @@ const sameNames = (a: readonly string[], b: readonly string[]): boolean =>
 
 /** Check the plane groups' channel names against the layer type's layout. */
 function checkChannels(layerType: LayerType, colorspace: PtmColorspace, terms: number,
-  planes: readonly PlaneGroup[]): void {
+  planes: readonly PlaneGroup[], pca?: PcaBasis): void {
   if (layerType === 'svbrdf') {
     const seen = new Set<string>();
     planes.forEach((p, i) => {
@@ -173,8 +179,9 @@ function checkChannels(layerType: LayerType, colorspace: PtmColorspace, terms: n
   if (layerType === 'image' && planes.length === 1 && sameNames(planes[0]?.channels ?? [], ['Y'])) {
     return;
   }
-  const expected = expectedChannels(layerType, colorspace, terms);
-  const kind = layerType === 'ptm' ? `ptm/${colorspace}` : layerType === 'hsh' ? `hsh${terms}` : layerType;
+  const expected = pca ? pcaChannelNames(pca.nplanes) : expectedChannels(layerType, colorspace, terms);
+  const kind = layerType === 'ptm' ? `ptm/${colorspace}` : layerType === 'hsh' ? `hsh${terms}`
+    : pca ? `${layerType} with ${pca.nplanes} planes` : layerType;
   if (planes.length !== expected.length) {
     throw new RelightServiceError(`${kind} needs ${expected.length} plane groups, got ${planes.length}`);
   }
@@ -185,6 +192,8 @@ function checkChannels(layerType: LayerType, colorspace: PtmColorspace, terms: n
     }
   });
 }
+
+const isLayerType = (x: unknown): x is LayerType => (LAYER_TYPES as readonly unknown[]).includes(x);
 
 function parseGlossLimits(x: unknown): readonly [number, number] {
   if (x === undefined) {
@@ -216,10 +225,12 @@ export function parseRelightService(block: unknown): RelightLayer {
   }
   const id = typeof block.id === 'string' ? block.id : '';
   const layerType = block.layerType;
-  if (layerType !== 'ptm' && layerType !== 'hsh' && layerType !== 'svbrdf' && layerType !== 'image') {
+  if (!isLayerType(layerType)) {
     throw new RelightServiceError(`unsupported layerType ${JSON.stringify(layerType)}`);
   }
-  const colorspace = block.colorspace ?? 'rgb';
+  const at = `${id.split(/[?#]/)[0]?.replace(/\/+$/, '').split('/').pop()?.replace(/\.json$/, '') || 'layer'}.`;
+  const pca = isPcaType(layerType) ? parsePcaBlock(block, layerType, at) : undefined;
+  const colorspace = pca ? 'rgb' : block.colorspace ?? 'rgb';
   if (colorspace !== 'lrgb' && colorspace !== 'rgb') {
     throw new RelightServiceError(`unsupported colorspace ${JSON.stringify(colorspace)}`);
   }
@@ -252,6 +263,9 @@ export function parseRelightService(block: unknown): RelightLayer {
     throw new RelightServiceError('planes must be an array');
   }
   const planes = block.planes.map((p, i) => parsePlane(p, i, id));
-  checkChannels(layerType, colorspace, terms, planes);
-  return { id, layerType, colorspace, width, height, planes, terms, glossLimits, inputColorSpace };
+  checkChannels(layerType, colorspace, terms, planes, pca);
+  return {
+    id, layerType, colorspace, width, height, planes, terms, glossLimits, inputColorSpace,
+    ...(pca ? { pca } : {}),
+  };
 }

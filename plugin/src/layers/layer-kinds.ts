@@ -15,44 +15,13 @@ import { RENDER_MODES, type RenderMode, type ShadingClass } from '../render/mode
 import type { QuantityFacts } from '../render/quantity-key';
 import { HSH_FRAGMENT_BODY } from './hsh/hsh.frag';
 import { IMAGE_FRAGMENT_BODY } from './image/image.frag';
+import { BILINEAR_KIND } from './bilinear/bilinear-kind';
+import { HSH_MODES, type KindGlsl, type KindUniforms, type LayerKind, type LayerKindName } from './kind-types';
 import { ptmFragmentBody } from './ptm/ptm.frag';
+import { RBF_KIND } from './rbf/rbf-kind';
 import { SVBRDF_FRAGMENT_BODY } from './svbrdf/svbrdf.frag';
 
-/** A layer kind: a layer type refined by what changes its program, its modes or its uniforms. */
-export type LayerKindName = 'ptm-lrgb' | 'ptm-rgb' | 'hsh4' | 'hsh9' | 'hsh16' | 'svbrdf' | 'svbrdf-flat' | 'image';
-
-/** The GLSL of a kind: its layer functions (`lt_color`, `lt_normal`, …) and compile-time constants. */
-export interface KindGlsl {
-  /** Program name (in `SHADER_NAME` and the program-cache key); kinds with the same GLSL share it. */
-  readonly name: string;
-  /** The layer functions, placed between the shared prelude and the mode `main()`. */
-  readonly body: string;
-  /** The kind's own `#define`s. */
-  readonly defines: Readonly<Record<string, number>>;
-  /** `#define`s from one layer's compile-time facts (svbrdf: where each map is, how kd/ks are encoded). */
-  layerDefines?(layer: RelightLayer): Readonly<Record<string, number>>;
-}
-
-/** Uniform values a kind adds for one layer, fixed while the layer is drawn. */
-export type KindUniforms = Readonly<Record<string, Float32Array>>;
-
-/** One row of {@link LAYER_KINDS}. */
-export interface LayerKind {
-  readonly name: LayerKindName;
-  /** The contract's column (`flat`: an image, or an svbrdf layer without a normal map). */
-  readonly shading: ShadingClass;
-  /** The render modes it supports, in menu order. */
-  readonly modes: readonly RenderMode[];
-  /** Whether the light changes the picture (the light widget is dimmed on layers where it does not). */
-  readonly lit: boolean;
-  /** The plane group a TiledImage shows while it has no relit tile yet. */
-  readonly previewPlane: number;
-  readonly glsl: KindGlsl;
-  /** `u_weights` for a light: the basis weights, or null when the kind has no light basis (all 0). */
-  readonly weights: ((light: Light) => ArrayLike<number>) | null;
-  /** The kind's own uniforms for a layer (the scale, bias, light and parameters are common to all). */
-  uniforms(layer: RelightLayer): KindUniforms;
-}
+export type { KindGlsl, KindUniforms, LayerKind, LayerKindName } from './kind-types';
 
 /** The modes of the contract's last column: svbrdf without shape, image. */
 const FLAT_MODES: readonly RenderMode[] = ['color', 'albedo', 'achromatic', 'unsharpImage'];
@@ -85,8 +54,7 @@ function hshKind(name: 'hsh4' | 'hsh9' | 'hsh16', terms: 4 | 9 | 16): LayerKind 
   return {
     name,
     shading: 'hsh',
-    modes: ['color', 'normals', 'albedo', 'diffuse', 'achromatic', 'specular', 'unsharpNormals',
-      'unsharpCoefficients', 'unsharpImage'],
+    modes: HSH_MODES,
     lit: true,
     previewPlane: 0,
     glsl: { name, body: HSH_FRAGMENT_BODY, defines: { TERMS: terms } },
@@ -144,6 +112,8 @@ export const LAYER_KINDS: Readonly<Record<LayerKindName, LayerKind>> = {
     weights: null,
     uniforms: svbrdfUniforms,
   },
+  rbf: RBF_KIND,
+  bilinear: BILINEAR_KIND,
   image: {
     name: 'image',
     shading: 'flat',
@@ -170,6 +140,8 @@ const KIND_OF_TYPE: Readonly<Record<LayerType, (layer: LayerFacts) => LayerKindN
   hsh: (layer) => `hsh${layer.terms}` as LayerKindName,
   svbrdf: (layer) => (svbrdfMapIndices(layer).normals >= 0 ? 'svbrdf' : 'svbrdf-flat'),
   image: () => 'image',
+  rbf: () => 'rbf',
+  bilinear: () => 'bilinear',
 };
 
 /** The kind of a (validated) layer. */

@@ -46,13 +46,15 @@ export function fixedUniforms(layer: RelightLayer, kind: LayerKind): FixedUnifor
 
 /**
  * Per-draw uniform values: the layer's fixed uniforms, the basis weights of the light (zero for
- * kinds without a basis), the light and half vector, and the render parameters.
+ * kinds without a basis), the light and half vector, the kind's light uniforms (PCA: the light's
+ * plane weights) and the render parameters.
  *
- * @param layer - the layer's kind and fixed uniforms (a resolved layer)
+ * @param layer - the layer, its kind and fixed uniforms (a resolved layer)
  * @param light - the light (already on the unit hemisphere: it is not clamped again)
  * @param params - render parameters
  */
-export function layerUniforms(layer: { readonly kind: LayerKind; readonly uniforms: FixedUniforms }, light: Light,
+export function layerUniforms(
+  layer: { readonly layer: RelightLayer; readonly kind: LayerKind; readonly uniforms: FixedUniforms }, light: Light,
   params: RenderParams = DEFAULT_RENDER_PARAMS): LayerUniforms {
   const weights = new Float32Array(MAX_TERMS);
   if (layer.kind.weights) {
@@ -65,6 +67,7 @@ export function layerUniforms(layer: { readonly kind: LayerKind; readonly unifor
     [U_WEIGHTS]: weights,
     [U_LIGHT]: Float32Array.of(light.lu, light.lv, light.lz),
     [U_HALF]: Float32Array.of(light.lu / hl, light.lv / hl, hz / hl),
+    ...layer.kind.lightUniforms?.(layer.layer, light),
   };
   for (const name of PARAM_NAMES) {
     out[U_PARAM[name]] = params[name];

@@ -1,11 +1,13 @@
 /**
  * What a measurement plots for a pixel's dequantised plane values (pure: no DOM): the material and
- * BRDF slice φd = 90° of a shape + material pixel, the colour over the light hemisphere of a PTM or
- * HSH pixel, the displayed colour of an image pixel (docs/rendering.md, "Measurement mode").
+ * BRDF slice φd = 90° of a shape + material pixel, the colour over the light hemisphere of a PTM,
+ * HSH or PCA (rbf, bilinear) pixel, the displayed colour of an image pixel (docs/rendering.md,
+ * "Measurement mode").
  */
 import { svbrdfMapIndices, type RelightLayer } from '../iiif/relight-service';
 import { brdfSlice, linearToSrgb, SLICE_SIZE, srgbToLinear } from '../math/brdf-slice';
 import type { Light } from '../math/light';
+import { pcaWeights, reconstruct, type PcaBasis } from '../math/pca-weights';
 import { DISK_SIZE, hshColor, ptmColor, reflectanceDisk, type Rgb } from '../math/reflectance-disk';
 
 /** What a measurement plots. */
@@ -88,11 +90,39 @@ export function swatchOf(layer: RelightLayer, values: Readonly<Record<string, nu
   return layer.inputColorSpace === 'linear' ? mapRgb(kd, linearToSrgb) : kd;
 }
 
+/** The PCA plane weights of each light of the disk, computed once per basis (the disk's lights are fixed). */
+const DISK_WEIGHTS = new WeakMap<PcaBasis, Map<string, Float64Array>>();
+
+function diskWeights(basis: PcaBasis, lu: number, lv: number): Float64Array {
+  let byLight = DISK_WEIGHTS.get(basis);
+  if (!byLight) {
+    byLight = new Map();
+    DISK_WEIGHTS.set(basis, byLight);
+  }
+  const key = `${lu},${lv}`;
+  let w = byLight.get(key);
+  if (!w) {
+    w = pcaWeights(basis, lu, lv);
+    byLight.set(key, w);
+  }
+  return w;
+}
+
+/** The PCA colour mode's unclamped `c` (shader `lt_color`) from the pixel's channels `P0…`. */
+function pcaColor(values: Readonly<Record<string, number>>, basis: PcaBasis, intensity: number):
+  (lu: number, lv: number) => Rgb {
+  const r = Array.from({ length: basis.nplanes }, (_, q) => values[`P${q}`] ?? 0);
+  return (lu, lv) => {
+    const c = reconstruct(r, diskWeights(basis, lu, lv));
+    return [c[0] * intensity, c[1] * intensity, c[2] * intensity];
+  };
+}
+
 /** The plot and material of a pixel's values (pure; `intensity` is `lightIntensity`). */
 export function plotOf(layer: RelightLayer, values: Readonly<Record<string, number>>, intensity: number):
   { kind: MeasurementKind; plot: MeasurementPlot; material: Material | null } {
-  if (layer.layerType === 'ptm' || layer.layerType === 'hsh') {
-    const color = layer.layerType === 'ptm'
+  if (layer.layerType === 'ptm' || layer.layerType === 'hsh' || layer.pca) {
+    const color = layer.pca ? pcaColor(values, layer.pca, intensity) : layer.layerType === 'ptm'
       ? (lu: number, lv: number) => ptmColor(values, layer.colorspace, lu, lv, intensity)
       : (lu: number, lv: number) => hshColor(values, layer.terms, lu, lv, intensity);
     return { kind: 'reflectance-disk', material: null,

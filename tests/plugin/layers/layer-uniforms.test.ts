@@ -1,13 +1,16 @@
 import { describe, expect, it } from 'vitest';
 import {
-  MAX_PLANES, U_BIAS, U_GLOSS_LIMITS, U_HALF, U_HSH_NORMAL_WEIGHTS, U_LIGHT, U_PARAM, U_SCALE, U_WEIGHTS,
+  MAX_PLANES, U_BIAS, U_GLOSS_LIMITS, U_HALF, U_HSH_NORMAL_INV, U_HSH_NORMAL_WEIGHTS, U_LIGHT, U_PARAM,
+  U_PCA_ALBEDO_WEIGHTS, U_PCA_NORMAL_WEIGHTS, U_PCA_WEIGHTS, U_SCALE, U_WEIGHTS,
 } from '../../../plugin/src/gl/uniforms';
 import { DEFAULT_RENDER_PARAMS, type RenderParams } from '../../../plugin/src/render/params';
 import { parseRelightService, type RelightLayer } from '../../../plugin/src/iiif/relight-service';
 import { layerUniforms } from '../../../plugin/src/layers/layer-uniforms';
 import { resolveLayer } from '../../../plugin/src/layers/resolved-layer';
+import { hshNormalInverse } from '../../../plugin/src/math/hsh-basis';
 import { lightFromProjection } from '../../../plugin/src/math/light';
-import { relightBlock } from '../fixtures';
+import { pcaAlbedoWeights, pcaNormalWeights, pcaPlaneWeights } from '../../../plugin/src/math/pca-weights';
+import { pcaBlock, relightBlock } from '../fixtures';
 
 /** The uniforms of `layer` under the light (lu, lv), resolved and clamped as the drawer does. */
 function uniformsOf(layer: RelightLayer, lu: number, lv: number, params?: RenderParams) {
@@ -80,5 +83,28 @@ describe('layerUniforms', () => {
     expect(w[0]).toBeCloseTo(1 / Math.sqrt(2 * Math.PI), 6);
     expect(w[9]).toBe(0);
     expect(u[U_HSH_NORMAL_WEIGHTS]).toHaveLength(48);
+  });
+});
+
+describe('the uniforms of a PCA layer', () => {
+  const rbf = parseRelightService(pcaBlock('rbf', 4));
+  const basis = rbf.pca;
+
+  it('sizes its program by the plane groups, and fixes the normal-light weights per layer', () => {
+    const resolved = resolveLayer(rbf);
+    expect(resolved.program.key).toBe('pca,PCA_GROUPS=2,PCA_SLOTS=7');
+    expect(resolved.uniforms[U_PCA_NORMAL_WEIGHTS]).toEqual(basis && pcaNormalWeights(basis, 7));
+    expect(resolved.uniforms[U_PCA_ALBEDO_WEIGHTS]).toEqual(basis && pcaAlbedoWeights(basis, 7));
+    expect(Array.from(resolved.uniforms[U_HSH_NORMAL_INV] ?? [])).toEqual(Array.from(Float32Array.from(hshNormalInverse())));
+  });
+
+  it('sends the light\'s plane weights each frame, and changes them with the light', () => {
+    const a = uniformsOf(rbf, 0.3, -0.2)[U_PCA_WEIGHTS];
+    const b = uniformsOf(rbf, -0.5, 0.1)[U_PCA_WEIGHTS];
+    expect(a).toEqual(basis && pcaPlaneWeights(basis, 0.3, -0.2, 7));
+    expect(a).toHaveLength(21);
+    expect(Array.from(a as Float32Array)).not.toEqual(Array.from(b as Float32Array));
+    // the PTM/HSH basis weights stay zero
+    expect(Array.from(uniformsOf(rbf, 0.3, -0.2)[U_WEIGHTS])).toEqual(new Array(16).fill(0));
   });
 });

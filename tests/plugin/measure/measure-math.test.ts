@@ -1,10 +1,13 @@
 import { describe, expect, it } from 'vitest';
-import type { RelightLayer } from '../../../plugin/src/iiif/relight-service';
+import { parseRelightService, type RelightLayer } from '../../../plugin/src/iiif/relight-service';
+import { pcaWeights, reconstruct } from '../../../plugin/src/math/pca-weights';
+import { diskLight } from '../../../plugin/src/math/reflectance-disk';
 import { measurementCaption } from '../../../plugin/src/measure/caption';
 import { materialOf, plotOf, swatchOf, type Measurement } from '../../../plugin/src/measure/plot-of';
 import { placeBeside } from '../../../plugin/src/measure/placement';
 import { dequantise, groupValues } from '../../../plugin/src/measure/dequantise';
 import { plotRgba } from '../../../plugin/src/measure/plot-rgba';
+import { pcaBlock } from '../fixtures';
 
 const group = (channels: string[]) => ({ serviceId: 'x', format: 'png', channels, scale: channels.map(() => 1),
   bias: channels.map(() => 0), embedded: null });
@@ -82,5 +85,24 @@ describe('placeBeside', () => {
     expect(placeBeside(10, 10, { w: 100, h: 50 }, { w: 400, h: 300 })).toEqual({ left: 26, top: 26 });
     expect(placeBeside(390, 290, { w: 100, h: 50 }, { w: 400, h: 300 })).toEqual({ left: 274, top: 224 });
     expect(placeBeside(50, 20, { w: 100, h: 50 }, { w: 120, h: 60 })).toEqual({ left: 0, top: 0 });
+  });
+});
+
+describe('the reflectance disk of a PCA pixel', () => {
+  const layer = parseRelightService(pcaBlock('bilinear', 4));
+  const values = { P0: 0.4, P1: -0.2, P2: 0.1, P3: 0.3 };
+
+  it('relights the pixel\'s coefficients at each light of the disk, as the colour mode does', () => {
+    const { kind, plot } = plotOf(layer, values, 1.5);
+    expect(kind).toBe('reflectance-disk');
+    const basis = layer.pca;
+    expect(basis).toBeDefined();
+    const at = (i: number, j: number): number[] => Array.from(plot.data.subarray((j * plot.width + i) * 3, (j * plot.width + i) * 3 + 3));
+    for (const [i, j] of [[24, 24], [10, 30], [35, 12]] as const) {
+      const { lu, lv } = diskLight(i, j, plot.width);
+      const c = basis ? reconstruct([0.4, -0.2, 0.1, 0.3], pcaWeights(basis, lu, lv)) : [NaN, NaN, NaN];
+      at(i, j).forEach((v, k) => { expect(v).toBeCloseTo((c[k] ?? NaN) * 1.5, 5); });
+    }
+    expect(at(10, 30)).not.toEqual(at(35, 12));
   });
 });

@@ -12,6 +12,7 @@ import pytest
 from lanterna.tiler.formats.pca_model import PcaBasis, plane_channel_names
 from lanterna.tiler.iiif.pyramid import vips_from_array, write_pyramid
 from lanterna.tiler.render import (
+    MODES,
     albedo,
     applicable_modes,
     f3,
@@ -25,6 +26,7 @@ from lanterna.tiler.render.shading import make_light
 F32 = npt.NDArray[np.float32]
 F64 = npt.NDArray[np.float64]
 LIGHTS = [(0.0, 0.0), (0.45, -0.3), (-0.6, 0.55)]
+RENDERING_MD = Path(__file__).resolve().parents[3] / "docs" / "rendering.md"
 
 
 def dome(count: int) -> F64:
@@ -171,6 +173,22 @@ def test_every_mode_of_hsh_renders_and_the_others_are_refused(layer_type: str,
     for mode in ("diffuseGain", "unsharpLuminance"):
         with pytest.raises(ValueError, match="does not apply"):
             render(layer, ch, (0.3, -0.2), mode)
+
+
+def documented_modes(column: str) -> tuple[str, ...]:
+    """The ✓ rows of one column of docs/rendering.md's "Modes and where they apply"."""
+    section = RENDERING_MD.read_text().split("## Modes and where they apply")[1].split("\n## ")[0]
+    rows = [[c.strip() for c in line.split("|")[1:-1]] for line in section.splitlines()
+            if line.startswith("| ")]
+    col = rows[0].index(column)
+    return tuple(r[0].strip("`") for r in rows[1:] if r[col].startswith("✓"))
+
+
+@pytest.mark.parametrize("layer_type", ["rbf", "bilinear"])
+def test_the_modes_are_those_of_the_docs_table(layer_type: str) -> None:
+    layer = block(random_basis(layer_type, "mrgb", 3, seed=12))
+    assert applicable_modes(layer) == documented_modes(layer_type)
+    assert set(documented_modes(layer_type)) <= set(MODES)
 
 
 def test_colour_specular_and_unsharp_follow_the_doc() -> None:
