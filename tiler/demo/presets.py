@@ -1,7 +1,8 @@
 """The demo dataset's preset library: each layer of the tablet at its best (docs/presets.md).
 
 Base presets: the inscription under raking light from the left (the V-cut letters cast shadows),
-the gold rosette under specular enhancement, shape + material lit from above left, the normal
+the gold rosette under specular enhancement, the RBF layer's gold between the dome's lights,
+shape + material lit from above left, the normal
 map, unsharp-masked normals on the cracks and pitting, and plain overhead light. Lens presets:
 the infrared band (the underdrawing), the ultraviolet band (the fluorescing red paint), the
 HSH's unsharp-masked coefficients (enhanced relief) and the false-colour fusion. Views are
@@ -33,6 +34,8 @@ def demo_presets(width: int, height: int) -> dict[str, Any]:
         "specular-inlay": {"label": "Specular enhancement", "layer": "ptm", "mode": "specular",
                            "params": {"specKd": 0.3, "specKs": 1.0, "specExponent": 20},
                            "light": [0.2, 0.3], "view": inlay},
+        "rbf-inlay": {"label": "RBF (Relight's PCA basis)", "layer": "rbf", "mode": "color",
+                      "light": [0.45, 0.1], "view": inlay},
         "material": {"label": "Shape + material", "layer": "svbrdf", "mode": "color",
                      "params": {"lightIntensity": 1.2}, "light": [-0.3, 0.35]},
         "normals": {"label": "Geometry (normals)", "layer": "geometry", "mode": "normals"},
@@ -55,6 +58,7 @@ def demo_presets(width: int, height: int) -> dict[str, Any]:
         "presets": presets,
         "base": [{"label": "Raking light from the left", "preset": "raking-west"},
                  {"label": "Specular enhancement on the inlay", "preset": "specular-inlay"},
+                 {"label": "The inlay as an RBF", "preset": "rbf-inlay"},
                  {"label": "Shape + material", "preset": "material"},
                  {"label": "Geometry (normals)", "preset": "normals"},
                  {"label": "Unsharp normals", "preset": "unsharp-normals"},
