@@ -16,7 +16,7 @@ const CORPUS = resolve(dirname(fileURLToPath(import.meta.url)), '../../data/pres
 /** The demo dataset (tiler/demo/dataset.py): its layers' kinds give their modes. */
 const DEMO: PresetDataset = {
   layers: [
-    ['ptm', 'ptm-lrgb'], ['hsh', 'hsh9'], ['svbrdf', 'svbrdf'], ['geometry', 'svbrdf'], ['band_ir', 'image'],
+    ['ptm', 'ptm-lrgb'], ['hsh', 'hsh9'], ['rbf', 'rbf'], ['svbrdf', 'svbrdf'], ['geometry', 'svbrdf'], ['band_ir', 'image'],
     ['band_uv', 'image'], ['band_R', 'image'], ['band_G', 'image'], ['band_B', 'image'], ['fc_ir_r_g', 'image'],
   ].map(([id, kind]) => ({ id: id, modes: LAYER_KINDS[kind as keyof typeof LAYER_KINDS].modes })),
   width: 1536,
