@@ -28,14 +28,15 @@ import numpy.typing as npt
 
 from lanterna.tiler.inputs.stack import StackReader
 
+from .ward_solve import MIN_COSI, SATURATED, solve_ward_band
+
+__all__ = ["ALPHA_STEPS", "GLOSS_LIMITS", "MIN_COSI", "SATURATED", "Ward", "alpha_grid", "fit_ward",
+           "predict_ward", "quantize_ward", "render_ward", "ward_basis"]
+
 #: ``glossLimits`` of the written layer and the range of the α grid.
 GLOSS_LIMITS = (0.03, 0.6)
 #: Number of α values tried (log-spaced, snapped to the 8-bit gloss levels).
 ALPHA_STEPS = 24
-#: Samples with ``n·l`` below this are shadowed/grazing and excluded.
-MIN_COSI = 0.05
-#: Samples with any channel at or above this (stack units, 0–1) are saturated and excluded.
-SATURATED = 0.99
 
 
 def alpha_grid(steps: int = ALPHA_STEPS,
@@ -126,54 +127,12 @@ def fit_ward(stack: npt.NDArray[np.floating] | StackReader, lights: npt.NDArray[
     kd_out = np.empty((h, w, 3), np.float32)
     ks_out = np.empty((h, w, 3), np.float32)
     al_out = np.empty((h, w), np.float32)
+    lf = np.asarray(lights, np.float64)
     for y0 in range(0, h, band_rows):
         raw = np.asarray(stack[:, y0:y0 + band_rows], np.float64)  # (N, b, W, 3)
         b = raw.shape[1]
         nrm = np.asarray(normals[y0:y0 + band_rows], np.float64)
-        cosi0, _ = ward_basis(nrm, lights, 1.0)
-        valid = (cosi0 >= MIN_COSI) & (raw.max(axis=3) < SATURATED)  # (N, b, W)
-        y = raw * valid[..., None]
-        yy = np.einsum("nbwc,nbwc->bwc", y, y)
-        a = cosi0 * valid
-        saa = np.einsum("nbw,nbw->bw", a, a)
-        say = np.einsum("nbw,nbwc->bwc", a, y)
-        best = np.full((b, w), np.inf)
-        kd_b = np.zeros((b, w, 3))
-        ks_b = np.zeros((b, w, 3))
-        al_b = np.full((b, w), grid[-1])
-        # Lambert-only solution (shared by every α's fallback)
-        kd_l = np.maximum(say / np.maximum(saa, 1e-12)[..., None], 0.0)
-        for alpha in grid:
-            _, bw = ward_basis(nrm, lights, alpha)
-            bw *= valid
-            sab = np.einsum("nbw,nbw->bw", a, bw)
-            sbb = np.einsum("nbw,nbw->bw", bw, bw)
-            sby = np.einsum("nbw,nbwc->bwc", bw, y)
-            det = saa * sbb - sab * sab
-            ok = det > 1e-12 * np.maximum(saa * sbb, 1e-30)
-            inv = np.where(ok, 1.0 / np.where(ok, det, 1.0), 0.0)[..., None]
-            kd = (sbb[..., None] * say - sab[..., None] * sby) * inv
-            ks = (saa[..., None] * sby - sab[..., None] * say) * inv
-            # kd < 0: specular only; ks < 0 (or singular): Lambert
-            ks_only = np.maximum(sby / np.maximum(sbb, 1e-30)[..., None], 0.0)
-            neg_kd = kd < 0
-            kd = np.where(neg_kd, 0.0, kd)
-            ks = np.where(neg_kd, ks_only, ks)
-            fall = (ks < 0) | ~ok[..., None]
-            kd = np.where(fall, kd_l, kd)
-            ks = np.where(fall, 0.0, ks)
-            # ks is stored 0–1: cap it and refit kd for the capped ks
-            over = ks > 1.0
-            kd_capped = (say - sab[..., None]) / np.maximum(saa, 1e-12)[..., None]
-            kd = np.where(over, np.maximum(kd_capped, 0.0), kd)
-            ks = np.where(over, 1.0, ks)
-            sse = (yy - 2 * (kd * say + ks * sby) + kd * kd * saa[..., None]
-                   + 2 * kd * ks * sab[..., None] + ks * ks * sbb[..., None]).sum(axis=2)
-            better = sse < best
-            best = np.where(better, sse, best)
-            kd_b = np.where(better[..., None], kd, kd_b)
-            ks_b = np.where(better[..., None], ks, ks_b)
-            al_b = np.where(better, alpha, al_b)
+        kd_b, ks_b, al_b = solve_ward_band(raw, nrm, lf, grid)
         kd_out[y0:y0 + b] = kd_b
         ks_out[y0:y0 + b] = ks_b
         al_out[y0:y0 + b] = al_b
