@@ -70,7 +70,7 @@ def normals_band(band: Band, lights: Lights, *, rank_window: tuple[float, float]
     0 = the rank window alone, the default for values as stored).
     """
     n, b, w, _ = band.shape
-    lum = (band @ np.asarray(LUMINANCE_WEIGHTS, np.float32)).reshape(n, -1).astype(np.float64)
+    lum = (band @ np.asarray(LUMINANCE_WEIGHTS, np.float32)).reshape(n, -1)  # float32
     nrm, albedo = solve_normals_band(lum, band.reshape(n, -1, 3), lights.astype(np.float64),
                                      rank_window=rank_window, shadow=shadow,
                                      iterations=iterations)

@@ -23,7 +23,9 @@ from typing import Any, Protocol
 import numpy as np
 import numpy.typing as npt
 
+from lanterna.tiler.formats.hsh_basis import hsh_weights
 from lanterna.tiler.formats.planes import PlaneLayer
+from lanterna.tiler.formats.ptm_model import ptm_weights
 from lanterna.tiler.inputs.stack import StackReader
 from lanterna.tiler.progress import Progress
 from lanterna.tiler.render.shading import linear_to_srgb, srgb_to_linear
@@ -118,21 +120,66 @@ class _Step:
     held: npt.NDArray[np.intp]
     train: npt.NDArray[np.intp]
     layers: bool
+    #: key -> ``(h, N)`` rows predicting the held-out lights straight from the band's samples
+    fused: dict[str, npt.NDArray[np.float32]] = field(default_factory=dict)
 
     def __call__(self, band: npt.NDArray[np.float32]) -> _StepResult:
         keys = self.full.keys
         outs = self.full.solve(band) if self.layers else None
         sse = {k: np.zeros(len(self.held)) for k in keys}
         if self.loo is not None:
-            fitted = self.loo.solve(band[self.train])
-            for k in keys:
-                for j, i in enumerate(self.held):
-                    pred = PREDICT[k](fitted[k], self.full.lights[i])
-                    if self.full.linear and k in ("normals", "ward"):
-                        pred = linear_to_srgb(pred)
-                    diff = pred.astype(np.float64) - band[i]
-                    sse[k][j] = float(np.vdot(diff, diff))
+            sse.update(self._held_out(band, self.loo))
         return outs, sse
+
+    def _held_out(self, band: npt.NDArray[np.float32], loo: _Solver
+                  ) -> dict[str, npt.NDArray[np.float64]]:
+        """The squared errors of the leave-one-out fits on the held-out lights of ``band``.
+
+        The linear models' held-out predictions are one product of the band with their
+        :attr:`fused` rows (no refit, no copy of the training images); the others are refitted
+        on the training images and predicted.
+        """
+        sse: dict[str, npt.NDArray[np.float64]] = {}
+        n = band.shape[0]
+        flat = np.ascontiguousarray(band).reshape(n, -1)
+        actual = flat[self.held]
+        for k, rows in self.fused.items():
+            pred = rows @ flat
+            np.clip(pred, 0.0, 1.0, out=pred)
+            pred -= actual
+            sse[k] = np.einsum("ij,ij->i", pred, pred, dtype=np.float64)
+        rest = [k for k in self.full.keys if k not in self.fused]
+        if not rest:
+            return sse
+        fitted = loo.solve(band[self.train])
+        for k in rest:
+            sse[k] = np.zeros(len(self.held))
+            for j, i in enumerate(self.held):
+                pred = PREDICT[k](fitted[k], self.full.lights[i])
+                if self.full.linear and k in ("normals", "ward"):
+                    pred = linear_to_srgb(pred)
+                diff = pred.reshape(-1) - actual[j]
+                sse[k][j] = float(np.einsum("i,i->", diff, diff, dtype=np.float64))
+        return sse
+
+
+def _fused_rows(loo: _Solver, lights: Lights, held: npt.NDArray[np.intp],
+                train: npt.NDArray[np.intp]) -> dict[str, npt.NDArray[np.float32]]:
+    """Per linear model, ``(h, N)`` = the held-out lights' basis rows × the leave-one-out
+    pseudo-inverse (zero on the held-out columns): the held-out predictions in one product."""
+    rows: dict[str, npt.NDArray[np.float32]] = {}
+    bases: dict[str, Callable[[float, float], npt.NDArray[np.floating]]] = {
+        "ptm": ptm_weights, "hsh": lambda u, v: hsh_weights(u, v, loo.terms)}
+    pinvs = {"ptm": loo.pinv.get("ptm-lrgb"), "hsh": loo.pinv.get("hsh")}
+    for k in ("ptm", "hsh"):
+        pinv = pinvs[k]
+        if k not in loo.keys or pinv is None:
+            continue
+        basis = np.stack([bases[k](float(lt[0]), float(lt[1])) for lt in lights[held]])
+        full = np.zeros((len(held), len(lights)))
+        full[:, train] = basis.astype(np.float64) @ pinv.astype(np.float64)
+        rows[k] = full.astype(np.float32)
+    return rows
 
 
 class BandRunner(Protocol):
@@ -194,7 +241,8 @@ def fit_stream(images: Images, lights: Lights, keys: Sequence[str], scratch: Pat
     sinks = Sinks(scratch, w, h)
     bar = progress("fitting " + ", ".join(keys), h) if progress else None
     spans = [(y0, min(h, y0 + rows)) for y0 in range(0, h, rows)]
-    step = _Step(full, loo, held, train, layers)
+    step = _Step(full, loo, held, train, layers,
+                 _fused_rows(loo, lights, held, train) if loo is not None else {})
     if runner is None:
         results: Iterable[_StepResult] = (step(band) for band in _prefetched(images, spans))
     else:

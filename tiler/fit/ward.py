@@ -28,6 +28,7 @@ import numpy.typing as npt
 
 from lanterna.tiler.inputs.stack import StackReader
 
+from .ward_kernel import ward_band_compiled
 from .ward_solve import MIN_COSI, SATURATED, solve_ward_band
 
 __all__ = ["ALPHA_STEPS", "GLOSS_LIMITS", "MIN_COSI", "SATURATED", "Ward", "alpha_grid", "fit_ward",
@@ -92,7 +93,7 @@ class Ward:
 
 def fit_ward(stack: npt.NDArray[np.floating] | StackReader, lights: npt.NDArray[np.floating],
              normals: npt.NDArray[np.floating], *, alphas: npt.NDArray[np.float64] | None = None,
-             band_rows: int = 32
+             band_rows: int = 32, compiled: bool = True
              ) -> tuple[npt.NDArray[np.float32], npt.NDArray[np.float32], npt.NDArray[np.float32]]:
     """Fit Lambert + isotropic Ward per pixel with the normal fixed.
 
@@ -119,6 +120,8 @@ def fit_ward(stack: npt.NDArray[np.floating] | StackReader, lights: npt.NDArray[
     (``a = cosi``, ``b`` the Ward term) are solved for the three channels at once; a channel
     with ``ks < 0`` falls back to Lambert (``ks = 0``), one with ``kd < 0`` to ``kd = 0``.
     Rows are processed in bands of ``band_rows``, so temporaries are ``O(N·band·W)``.
+    The ks colour is constrained and weak lobes dropped as :mod:`.ward_solve` says.
+    ``compiled`` runs the Numba kernel (:mod:`.ward_kernel`), else the numpy reference.
     """
     n, h, w, _ = stack.shape
     if lights.shape != (n, 3) or normals.shape != (h, w, 3):
@@ -129,13 +132,14 @@ def fit_ward(stack: npt.NDArray[np.floating] | StackReader, lights: npt.NDArray[
     al_out = np.empty((h, w), np.float32)
     lf = np.asarray(lights, np.float64)
     for y0 in range(0, h, band_rows):
-        raw = np.asarray(stack[:, y0:y0 + band_rows], np.float64)  # (N, b, W, 3)
-        b = raw.shape[1]
         nrm = np.asarray(normals[y0:y0 + band_rows], np.float64)
-        kd_b, ks_b, al_b = solve_ward_band(raw, nrm, lf, grid)
-        kd_out[y0:y0 + b] = kd_b
-        ks_out[y0:y0 + b] = ks_b
-        al_out[y0:y0 + b] = al_b
+        b = nrm.shape[0]
+        maps: tuple[npt.NDArray[np.floating], ...]
+        if compiled:  # (N, b, W, 3) as float32, the kernel's input
+            maps = ward_band_compiled(np.asarray(stack[:, y0:y0 + b], np.float32), nrm, lf, grid)
+        else:
+            maps = solve_ward_band(np.asarray(stack[:, y0:y0 + b], np.float64), nrm, lf, grid)
+        kd_out[y0:y0 + b], ks_out[y0:y0 + b], al_out[y0:y0 + b] = maps
     return kd_out, ks_out, al_out
 
 
