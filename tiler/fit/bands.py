@@ -15,6 +15,7 @@ import numpy.typing as npt
 from lanterna.tiler.formats.hsh_basis import hsh_weights
 from lanterna.tiler.formats.ptm_model import ptm_weights
 
+from .lrgb_kernel import lrgb_band_compiled
 from .normals import ITERATIONS, RANK_WINDOW, SHADOW_FRACTION, solve_normals_band
 from .ward import GLOSS_LIMITS, Ward, fit_ward, predict_ward, quantize_ward
 
@@ -40,9 +41,13 @@ def ptm_rgb_band(band: Band, pinv255: npt.NDArray[np.float32]) -> Out:
     return {"coeffs": _project(pinv255, band)}
 
 
-def ptm_lrgb_band(band: Band, pinv: npt.NDArray[np.float32]) -> Out:
+def ptm_lrgb_band(band: Band, pinv: npt.NDArray[np.float32], *, compiled: bool = True) -> Out:
     """LRGB PTM (ptmfit): ``coeffs (b, W, 6)`` 0–255 units of the normalised luminance and
-    ``rgb (b, W, 3)`` uint8 = ``rint(255 · Σ c·Yn / Σ Yn²)``."""
+    ``rgb (b, W, 3)`` uint8 = ``rint(255 · Σ c·Yn / Σ Yn²)`` (:mod:`.lrgb_kernel`; ``compiled``
+    False: this numpy reference)."""
+    if compiled:
+        coeffs32, rgb8 = lrgb_band_compiled(band, pinv, LUMINANCE_WEIGHTS)
+        return {"coeffs": coeffs32, "rgb": rgb8}
     n, b, w, _ = band.shape
     lum = band @ np.asarray(LUMINANCE_WEIGHTS, np.float32)  # (N, b, W)
     peak = lum.max(axis=0)

@@ -11,10 +11,11 @@ import numpy as np
 import numpy.typing as npt
 import pytest
 
+from lanterna.tiler.fit.bands import ptm_lrgb_band
 from lanterna.tiler.fit.engine import fit_stream
 from lanterna.tiler.fit.hsh import hsh_design_matrix
 from lanterna.tiler.fit.normals import solve_normals_band
-from lanterna.tiler.fit.ptm import ptm_design_matrix
+from lanterna.tiler.fit.ptm import ptm_design_matrix, ptm_pinv
 from lanterna.tiler.fit.ward import fit_ward
 from tests.python.fixtures.photos import spiral_lights
 
@@ -88,3 +89,15 @@ def test_fused_leave_one_out_equals_a_least_squares_refit(tmp_path: Path, key: s
     expected = [10 * math.log10(1 / m) for m in mse]
     assert report["heldOut"] == held.tolist()
     assert np.allclose(report["psnr"], expected, atol=2e-3), (report["psnr"], expected)
+
+
+def test_compiled_lrgb_equals_the_numpy_band_fit() -> None:
+    img, lights, _ = _scene()
+    pinv = ptm_pinv(ptm_design_matrix(lights)).astype(np.float32)
+    ref = ptm_lrgb_band(img, pinv, compiled=False)
+    out = ptm_lrgb_band(img, pinv)
+    assert out["coeffs"].shape == ref["coeffs"].shape == (H, W, 6)
+    assert np.abs(ref["coeffs"] - out["coeffs"]).max() <= 1e-6 * np.abs(ref["coeffs"]).max()
+    diff = np.abs(ref["rgb"].astype(int) - out["rgb"])
+    assert diff.max() <= 1 and np.count_nonzero(diff) <= 0.001 * diff.size
+    assert out["rgb"][0, 0].tolist() == [0, 0, 0] and ref["rgb"].max() > 100
