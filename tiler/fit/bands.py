@@ -92,7 +92,7 @@ def ward_band(band: Band, lights: Lights, normals: npt.NDArray[np.float32]) -> O
 def predict_ptm_band(out: Out, light: npt.NDArray[np.float64]) -> Band:
     """A PTM band (float coefficients) relit under ``light``, 0–1 as ``Ptm.relight``."""
     w = ptm_weights(float(light[0]), float(light[1])).astype(np.float32)
-    lum = out["coeffs"].astype(np.float32) @ w
+    lum = np.asarray(out["coeffs"], np.float32) @ w
     if "rgb" in out:
         res = out["rgb"].astype(np.float32) / 255.0 * (lum / 255.0)[..., None]
     else:
@@ -104,13 +104,13 @@ def predict_hsh_band(out: Out, light: npt.NDArray[np.float64]) -> Band:
     """An HSH band (float coefficients) relit under ``light``, clipped to 0–1."""
     terms = out["coeffs"].shape[-1]
     wts = hsh_weights(float(light[0]), float(light[1]), terms)
-    res: Band = np.clip(out["coeffs"].astype(np.float32) @ wts, 0.0, 1.0).astype(np.float32)
+    res: Band = np.clip(np.asarray(out["coeffs"], np.float32) @ wts, 0.0, 1.0).astype(np.float32)
     return res
 
 
 def predict_normals_band(out: Out, light: npt.NDArray[np.float64]) -> Band:
     """Lambert ``albedo · max(0, n·l)`` of a normals band, clipped to 0–1."""
-    shade = np.maximum(out["normals"].astype(np.float32) @ light.astype(np.float32), 0.0)
+    shade = np.maximum(np.asarray(out["normals"], np.float32) @ light.astype(np.float32), 0.0)
     return np.clip(out["albedo"] * shade[..., None], 0.0, 1.0).astype(np.float32)
 
 

@@ -26,7 +26,7 @@ import numpy.typing as npt
 from lanterna.tiler.formats.hsh_basis import hsh_weights
 from lanterna.tiler.formats.planes import PlaneLayer
 from lanterna.tiler.formats.ptm_model import ptm_weights
-from lanterna.tiler.inputs.stack import StackReader
+from lanterna.tiler.inputs.stack import StackReader, to_unit
 from lanterna.tiler.progress import Progress
 from lanterna.tiler.render.shading import linear_to_srgb, srgb_to_linear
 
@@ -41,6 +41,9 @@ Lights = npt.NDArray[np.float64]
 
 #: Bytes of input (N × rows × W × 3 float32) solved at once when the band height is automatic.
 BAND_BUDGET = 48 << 20
+#: Bytes of float input (N × rows × W × 3 float32) solved at once: read bands are split into
+#: sub-bands this size, which stay in the CPU caches with their solvers' temporaries.
+SUB_BAND_BUDGET = 4 << 20
 #: Models the engine fits, by CLI name.
 MODEL_KEYS = ("ptm", "ptm-lrgb", "hsh", "normals", "ward")
 
@@ -93,7 +96,7 @@ class _Solver:
                                   iterations=fb.IRLS_ITERATIONS if self.linear else 0)
             out["normals"] = nrm
             if "ward" in self.keys:
-                normals = nrm["normals"].astype(np.float32)
+                normals = np.asarray(nrm["normals"], np.float32)
                 out["ward"] = {**fb.ward_band(physical, self.lights, normals),
                                "normals": normals}
         return out
@@ -243,11 +246,12 @@ def fit_stream(images: Images, lights: Lights, keys: Sequence[str], scratch: Pat
     spans = [(y0, min(h, y0 + rows)) for y0 in range(0, h, rows)]
     step = _Step(full, loo, held, train, layers,
                  _fused_rows(loo, lights, held, train) if loo is not None else {})
+    results: Iterable[tuple[int, _StepResult]]
     if runner is None:
-        results: Iterable[_StepResult] = (step(band) for band in _prefetched(images, spans))
+        results = ((y1, step(band)) for y1, band in _pieces(images, spans, sub_band_rows(n, w)))
     else:
-        results = runner.bands(images, spans, step)
-    for (_, y1), (outs, band_sse) in zip(spans, results, strict=True):
+        results = zip((y1 for _, y1 in spans), runner.bands(images, spans, step), strict=True)
+    for y1, (outs, band_sse) in results:
         if outs is not None:
             sinks.take(outs, keys)
         for k in keys:
@@ -267,19 +271,37 @@ def fit_stream(images: Images, lights: Lights, keys: Sequence[str], scratch: Pat
     return FitResult(fitted, quality, rows)
 
 
-def _prefetched(images: Images, spans: Sequence[tuple[int, int]]
-                ) -> Iterator[npt.NDArray[np.float32]]:
-    """Yield the bands in order, reading the next one in a thread while this one is solved.
+def sub_band_rows(n: int, width: int, budget: int = SUB_BAND_BUDGET) -> int:
+    """Rows solved at once so that the float sub-band ``(n, rows, width, 3)`` fits ``budget``."""
+    return max(1, budget // max(1, n * width * 12))
 
-    libvips decodes without the GIL, so decoding overlaps the numpy work; two bands are held.
+
+def _pieces(images: Images, spans: Sequence[tuple[int, int]], rows: int
+            ) -> Iterator[tuple[int, npt.NDArray[np.float32]]]:
+    """Yield ``(y1, float band)`` sub-bands of ``rows`` rows, in order, of each read band.
+
+    The read bands of a :class:`StackReader` stay as stored (8-bit: a quarter of the float
+    band) and are read a band ahead in a thread (libvips decodes without the GIL); each sub-band
+    becomes float32 only when it is solved, so it and its solvers' temporaries stay in cache.
+    The values are those of ``images[:, y0:y1]``.
     """
-    def read(span: tuple[int, int]) -> npt.NDArray[np.float32]:
-        return np.asarray(images[:, span[0]:span[1]], np.float32)
+    def read(span: tuple[int, int]) -> Any:
+        if isinstance(images, StackReader):
+            return images.native_rows(*span)
+        return images[:, span[0]:span[1]]
 
     with ThreadPoolExecutor(max_workers=1, thread_name_prefix="lanterna-read") as pool:
         ahead = pool.submit(read, spans[0]) if spans else None
-        for i in range(len(spans)):
+        for i, (y0, y1) in enumerate(spans):
             assert ahead is not None
             band = ahead.result()
             ahead = pool.submit(read, spans[i + 1]) if i + 1 < len(spans) else None
-            yield band
+            for r0 in range(0, y1 - y0, rows):
+                r1 = min(y1 - y0, r0 + rows)
+                if isinstance(images, StackReader):
+                    piece = np.empty((len(band), r1 - r0, images.shape[2], 3), np.float32)
+                    for k, (image_rows, full_scale) in enumerate(band):
+                        to_unit(image_rows[r0:r1], full_scale, piece[k])
+                else:
+                    piece = np.asarray(band[:, r0:r1], np.float32)
+                yield y0 + r1, piece

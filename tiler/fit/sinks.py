@@ -73,7 +73,7 @@ class Spill:
                 self.file = open(self.path, "wb")  # noqa: SIM115 - closed in bands()
         self.shapes.append(km.shape)
         if self.held is not None:
-            self.held.append(km if km.base is None else km.copy())
+            self.held.append(km)  # a view keeps only the solver's own output alive
         else:
             assert self.file is not None
             self.file.write(km.data)
@@ -117,16 +117,17 @@ class Sinks:
     def take(self, outs: dict[str, fb.Out], keys: Sequence[str]) -> None:
         for k in ("ptm", "ptm-lrgb", "hsh"):
             if k in keys:
-                self._spill(k, outs[k]["coeffs"].astype(np.float32))
+                self._spill(k, np.asarray(outs[k]["coeffs"], np.float32))
         if "ptm-lrgb" in keys:
-            self._write("ptm-lrgb-color", outs["ptm-lrgb"]["rgb"].astype(np.uint8))
+            self._write("ptm-lrgb-color", np.asarray(outs["ptm-lrgb"]["rgb"], np.uint8))
         if {"normals", "ward"} & set(keys):
-            self._write("normals", encode_normals(outs["normals"]["normals"].astype(np.float32)))
+            self._write("normals", encode_normals(np.asarray(outs["normals"]["normals"],
+                                                             np.float32)))
         if "normals" in keys:
             self._write("albedo", _to8(outs["normals"]["albedo"]))
         if "ward" in keys:
             for m in ("kd", "ks", "gloss"):
-                self._write(f"ward-{m}", outs["ward"][m].astype(np.uint8))
+                self._write(f"ward-{m}", np.asarray(outs["ward"][m], np.uint8))
 
     def finish(self, keys: Sequence[str], terms: int, space: str,
                progress: Callable[[str, int], Progress] | None) -> dict[str, PlaneLayer]:
