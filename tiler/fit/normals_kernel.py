@@ -19,7 +19,7 @@ import numpy as np
 import numpy.typing as npt
 
 _RIDGE = 1e-9
-_CHUNK = 512  # pixels per parallel task, sharing one set of scratch arrays
+_CHUNK = 512  # pixels per parallel task
 
 
 @numba.njit(cache=True, parallel=True, nogil=True)
@@ -29,56 +29,55 @@ def _rank_window(lum: npt.NDArray[np.floating], colour: npt.NDArray[np.floating]
     n, p = lum.shape
     for chunk in numba.prange((p + _CHUNK - 1) // _CHUNK):
         q0, q1 = chunk * _CHUNK, min(p, (chunk + 1) * _CHUNK)
-        # the chunk's samples pixel-major (the inputs are light-major: one cache line a sample)
+        # the chunk's luminances pixel-major (the input is light-major: a cache line a sample)
         ys = np.empty((q1 - q0, n))
-        cs = np.empty((q1 - q0, n, 3))
         for i in range(n):
             for q in range(q0, q1):
                 ys[q - q0, i] = lum[i, q]
-                for c in range(3):
-                    cs[q - q0, i, c] = colour[i, q, c]
-        order = np.empty(n, np.intp)
         keep = np.empty(n, np.bool_)
         for q in range(q0, q1):
-            _pixel(ys[q - q0], cs[q - q0], lights, lo, hi, shadow, normals, albedo, q, order,
-                   keep)
-
-
-@numba.njit(cache=True, nogil=True, inline="always")
-def _stable_order(y: npt.NDArray[np.float64], order: npt.NDArray[np.intp]) -> None:
-    """``order`` = a stable argsort of ``y`` (insertion sort: N is tens of samples)."""
-    n = y.shape[0]
-    if n > 64:
-        order[:] = np.argsort(y, kind="mergesort")
-        return
-    for i in range(n):
-        v = y[i]
-        j = i - 1
-        while j >= 0 and y[order[j]] > v:
-            order[j + 1] = order[j]
-            j -= 1
-        order[j + 1] = i
+            _pixel(ys[q - q0], colour, lights, lo, hi, shadow, normals, albedo, q, keep)
 
 
 @numba.njit(cache=True, nogil=True)
-def _pixel(y: npt.NDArray[np.float64], colour: npt.NDArray[np.float64],
-           lights: npt.NDArray[np.float64], lo: int, hi: int, shadow: float,
-           normals: npt.NDArray[np.float32], albedo: npt.NDArray[np.float32], q: int,
-           order: npt.NDArray[np.intp], keep: npt.NDArray[np.bool_]) -> None:
-    """One pixel: its samples ``y (N,)``, ``colour (N, 3)``; writes row ``q`` of the outputs."""
+def _select(y: npt.NDArray[np.float64], lo: int, hi: int, shadow: float,
+            keep: npt.NDArray[np.bool_]) -> None:
+    """``keep`` = the samples whose stable rank is in ``[lo, hi)`` and brighter than ``shadow``
+    × the maximum; every such brighter sample if fewer than 3."""
     n = y.shape[0]
-    _stable_order(y, order)
-    top = y.max()
-    keep[:] = False
+    threshold = shadow * y.max()
     count = 0
-    for r in range(lo, min(hi, n)):
-        i = order[r]
-        if y[i] > shadow * top:
-            keep[i] = True
-            count += 1
+    if n <= 64:  # ranks by counting: branch-free, no sort
+        for i in range(n):
+            yi = y[i]
+            rank = 0
+            for j in range(i):  # earlier equal samples rank lower
+                rank += 1 if y[j] <= yi else 0
+            for j in range(i + 1, n):
+                rank += 1 if y[j] < yi else 0
+            keep[i] = (rank >= lo) & (rank < hi) & (yi > threshold)
+            count += keep[i]
+    else:
+        keep[:] = False
+        order = np.argsort(y, kind="mergesort")  # stable: ties ranked by position
+        for r in range(lo, min(hi, n)):
+            i = order[r]
+            if y[i] > threshold:
+                keep[i] = True
+                count += 1
     if count < 3:
         for i in range(n):
-            keep[i] = y[i] > shadow * top
+            keep[i] = y[i] > threshold
+
+
+@numba.njit(cache=True, nogil=True)
+def _pixel(y: npt.NDArray[np.float64], colour: npt.NDArray[np.floating],
+           lights: npt.NDArray[np.float64], lo: int, hi: int, shadow: float,
+           normals: npt.NDArray[np.float32], albedo: npt.NDArray[np.float32], q: int,
+           keep: npt.NDArray[np.bool_]) -> None:
+    """Pixel ``q``: its luminances ``y (N,)``; writes row ``q`` of the outputs."""
+    n = y.shape[0]
+    _select(y, lo, hi, shadow, keep)
     a00 = a11 = a22 = a01 = a02 = a12 = 0.0
     b0 = b1 = b2 = 0.0
     for i in range(n):
@@ -122,9 +121,9 @@ def _pixel(y: npt.NDArray[np.float64], colour: npt.NDArray[np.float64],
         if keep[i]:
             s = max(0.0, nx * lights[i, 0] + ny * lights[i, 1] + nz * lights[i, 2])
             den += s * s
-            r0 += s * colour[i, 0]
-            r1 += s * colour[i, 1]
-            r2 += s * colour[i, 2]
+            r0 += s * colour[i, q, 0]
+            r1 += s * colour[i, q, 1]
+            r2 += s * colour[i, q, 2]
     den = max(den, 1e-12)
     albedo[q, 0], albedo[q, 1], albedo[q, 2] = r0 / den, r1 / den, r2 / den
 
