@@ -22,6 +22,7 @@ from typing import Any, Protocol
 
 import numpy as np
 import numpy.typing as npt
+from threadpoolctl import threadpool_limits
 
 from lanterna.tiler.formats.hsh_basis import hsh_weights
 from lanterna.tiler.formats.planes import PlaneLayer
@@ -251,13 +252,16 @@ def fit_stream(images: Images, lights: Lights, keys: Sequence[str], scratch: Pat
         results = ((y1, step(band)) for y1, band in _pieces(images, spans, sub_band_rows(n, w)))
     else:
         results = zip((y1 for _, y1 in spans), runner.bands(images, spans, step), strict=True)
-    for y1, (outs, band_sse) in results:
-        if outs is not None:
-            sinks.take(outs, keys)
-        for k in keys:
-            sse[k] += band_sse[k]
-        if bar:
-            bar.update(y1)
+    # one BLAS thread: the pass has its own (the read-ahead decode, the kernels'); idle BLAS
+    # threads spin, which on a shared or busy machine costs more than the small products gain
+    with threadpool_limits(limits=1, user_api="blas"):
+        for y1, (outs, band_sse) in results:
+            if outs is not None:
+                sinks.take(outs, keys)
+            for k in keys:
+                sse[k] += band_sse[k]
+            if bar:
+                bar.update(y1)
     if hasattr(images, "close"):
         images.close()  # the pass is over: free the decoders before quantising and tiling
     space = "linear" if linear else "display"

@@ -18,6 +18,8 @@ import numba
 import numpy as np
 import numpy.typing as npt
 
+from . import compiled  # noqa: F401 - the threading layer, before any kernel runs
+
 _RIDGE = 1e-9
 _CHUNK = 512  # pixels per parallel task
 

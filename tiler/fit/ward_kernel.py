@@ -17,6 +17,7 @@ import numba
 import numpy as np
 import numpy.typing as npt
 
+from . import compiled  # noqa: F401 - the threading layer, before any kernel runs
 from . import ward_solve as ws
 
 _SQRT3 = 1.0 / math.sqrt(3.0)
