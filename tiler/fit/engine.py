@@ -1,9 +1,11 @@
 """Fit every requested model in one streamed pass over a multi-light collection.
 
 One pass reads the images top to bottom in bands of rows (:class:`~lanterna.tiler.inputs.stack.
-StackReader`) and, per band, solves every model twice — on all lights (the layer) and without
-the held-out lights (the leave-one-out report, accumulated as squared errors on the held-out
-images of the same band) — so the images are decoded once whatever the number of models.
+StackReader`, kept 8-bit as decoded) and solves them in cache-sized float sub-bands, each
+twice — on all lights (the layer) and without the held-out lights (the leave-one-out report,
+accumulated as squared errors on the held-out images of the same rows; the linear models predict
+them by one product, :func:`_fused_rows`) — so the images are decoded once whatever the number
+of models.
 
 Memory is bounded by the band, not the image: each band's outputs go to file-backed planes or,
 for the globally quantised PTM/HSH coefficients, to a float spill quantised in a second pass

@@ -117,10 +117,11 @@ def fit_ward(stack: npt.NDArray[np.floating] | StackReader, lights: npt.NDArray[
     ``ks`` is capped at 1 (the stored range), with kd refitted for the capped value.
     Samples with ``n·l < MIN_COSI`` or any channel ``≥ SATURATED`` are excluded.  Per α, the
     per-pixel normal equations ``[[Σaa, Σab], [Σab, Σbb]]·(kd_c, ks_c) = (Σa·y_c, Σb·y_c)``
-    (``a = cosi``, ``b`` the Ward term) are solved for the three channels at once; a channel
-    with ``ks < 0`` falls back to Lambert (``ks = 0``), one with ``kd < 0`` to ``kd = 0``.
+    (``a = cosi``, ``b`` the Ward term) are solved for the three channels at once; the ks
+    colour is then kept within ``MAX_SPECULAR_ANGLE`` of the grey–diffuse cone (else projected
+    onto it), an α is tried only where ``MIN_LOBE_SAMPLES`` samples lie in its lobe, and a channel
+    whose kd would be negative gets ``kd = 0`` and its ks alone (:mod:`.ward_solve`).
     Rows are processed in bands of ``band_rows``, so temporaries are ``O(N·band·W)``.
-    The ks colour is constrained and weak lobes dropped as :mod:`.ward_solve` says.
     ``compiled`` runs the Numba kernel (:mod:`.ward_kernel`), else the numpy reference.
     """
     n, h, w, _ = stack.shape

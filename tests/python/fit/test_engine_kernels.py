@@ -11,6 +11,7 @@ import numpy as np
 import numpy.typing as npt
 import pytest
 
+from lanterna.tiler.fit import sinks
 from lanterna.tiler.fit.bands import ptm_lrgb_band
 from lanterna.tiler.fit.engine import fit_stream
 from lanterna.tiler.fit.hsh import hsh_design_matrix
@@ -101,3 +102,21 @@ def test_compiled_lrgb_equals_the_numpy_band_fit() -> None:
     diff = np.abs(ref["rgb"].astype(int) - out["rgb"])
     assert diff.max() <= 1 and np.count_nonzero(diff) <= 0.001 * diff.size
     assert out["rgb"][0, 0].tolist() == [0, 0, 0] and ref["rgb"].max() > 100
+
+
+def test_spill_on_disk_equals_spill_in_memory(tmp_path: Path,
+                                              monkeypatch: pytest.MonkeyPatch) -> None:
+    """PTM/HSH coefficients kept in memory (small fits) or spilled to disk (past the budget)
+    give the same planes, and the scratch file is gone at the end."""
+    img, lights, _ = _scene(3)
+    keys = ["ptm", "ptm-lrgb", "hsh"]
+    (tmp_path / "memory").mkdir()
+    (tmp_path / "disk").mkdir()
+    kept = fit_stream(img, lights, keys, tmp_path / "memory", band_rows=6).layers
+    monkeypatch.setattr(sinks, "SPILL_MEMORY", 0)
+    spilled = fit_stream(img, lights, keys, tmp_path / "disk", band_rows=6).layers
+    assert not list((tmp_path / "disk").glob("*.f32"))
+    for k in keys:
+        a, b = kept[k].channels(), spilled[k].channels()
+        assert a.keys() == b.keys() and all(np.array_equal(a[c], b[c]) for c in a)
+        assert any(np.ptp(a[c]) > 0 for c in a)
