@@ -35,6 +35,7 @@ from lanterna.tiler.render.shading import linear_to_srgb, srgb_to_linear
 
 from . import bands as fb
 from .hsh import hsh_design_matrix, hsh_pinv
+from .lrgb_kernel import lrgb_held_out_compiled
 from .normals import check_lights
 from .ptm import ptm_design_matrix, ptm_pinv
 from .sinks import Sinks
@@ -142,8 +143,9 @@ class _Step:
         """The squared errors of the leave-one-out fits on the held-out lights of ``band``.
 
         The linear models' held-out predictions are one product of the band with their
-        :attr:`fused` rows (no refit, no copy of the training images); the others are refitted
-        on the training images and predicted.
+        :attr:`fused` rows (no refit, no copy of the training images), LRGB's are fitted and
+        predicted per pixel by a compiled kernel from the band itself; the others are refitted
+        on a copy of the training images and predicted.
         """
         sse: dict[str, npt.NDArray[np.float64]] = {}
         n = band.shape[0]
@@ -154,7 +156,13 @@ class _Step:
             np.clip(pred, 0.0, 1.0, out=pred)
             pred -= actual
             sse[k] = np.einsum("ij,ij->i", pred, pred, dtype=np.float64)
-        rest = [k for k in self.full.keys if k not in self.fused]
+        if "ptm-lrgb" in self.full.keys:  # compiled per pixel, from the band itself
+            basis = np.stack([ptm_weights(float(lt[0]), float(lt[1])).astype(np.float32)
+                              for lt in self.full.lights[self.held]])
+            sse["ptm-lrgb"] = lrgb_held_out_compiled(band, loo.pinv["ptm-lrgb"],
+                                                     fb.LUMINANCE_WEIGHTS, self.train,
+                                                     self.held, basis)
+        rest = [k for k in self.full.keys if k not in self.fused and k != "ptm-lrgb"]
         if not rest:
             return sse
         fitted = loo.solve(band[self.train])

@@ -12,7 +12,7 @@ import numpy.typing as npt
 import pytest
 
 from lanterna.tiler.fit import sinks
-from lanterna.tiler.fit.bands import ptm_lrgb_band
+from lanterna.tiler.fit.bands import predict_ptm_band, ptm_lrgb_band
 from lanterna.tiler.fit.engine import fit_stream
 from lanterna.tiler.fit.hsh import hsh_design_matrix
 from lanterna.tiler.fit.normals import solve_normals_band
@@ -120,3 +120,22 @@ def test_spill_on_disk_equals_spill_in_memory(tmp_path: Path,
         a, b = kept[k].channels(), spilled[k].channels()
         assert a.keys() == b.keys() and all(np.array_equal(a[c], b[c]) for c in a)
         assert any(np.ptp(a[c]) > 0 for c in a)
+
+
+def test_compiled_lrgb_leave_one_out_equals_refit_and_predict(tmp_path: Path) -> None:
+    """The LRGB report fitted and predicted per pixel from the band equals the numpy band fit
+    on a copy of the training images followed by the PTM prediction."""
+    img, lights, _ = _scene(9)
+    every = 5
+    report = fit_stream(img, lights, ["ptm-lrgb"], tmp_path, holdout_every=every,
+                        layers=False, band_rows=7).quality["ptm-lrgb"]
+    held = np.arange(0, N, every)
+    train = np.setdiff1d(np.arange(N), held)
+    fitted = ptm_lrgb_band(img[train], ptm_pinv(ptm_design_matrix(lights[train]))
+                           .astype(np.float32), compiled=False)
+    expected = []
+    for i in held:
+        pred = predict_ptm_band(fitted, lights[i]).astype(np.float64)
+        expected.append(10 * math.log10(1 / np.mean((pred - img[i]) ** 2)))
+    assert report["heldOut"] == held.tolist()
+    assert np.allclose(report["psnr"], expected, atol=2e-3), (report["psnr"], expected)
