@@ -2,6 +2,7 @@
 
     .venv/bin/python bench/fit.py throughput [--size 4096] [--lights 24] [--json OUT]
     .venv/bin/python bench/fit.py memory [--size 32768] [--lights 8] [--json OUT]
+    .venv/bin/python bench/fit.py compare --python OTHER/.venv/bin/python [--size 1024] [--json OUT]
 
 ``throughput`` writes a synthetic multi-light JPEG stack (a bumpy Lambert + Phong object,
 procedural in libvips, so it never exists whole in memory), then times, interleaved in one run
@@ -9,6 +10,12 @@ procedural in libvips, so it never exists whole in memory), then times, interlea
 the fit makes (decode + conversion to float bands), and the streamed fit of each model with and
 without its leave-one-out twin (:func:`~lanterna.tiler.fit.engine.fit_stream`: solve,
 quantise, write the 8-bit planes; tiling excluded — see bench/tiler.py).
+
+``compare`` measures this checkout against another one (its interpreter, ``--python``) on a
+shared machine: per round and model, each version fits in a fresh process (imports and compiled
+kernels loaded first, then the bare decode and the fit timed back to back, with the process's CPU
+time), the two versions alternating; it reports per version the median and the minimum of the
+per-run ratio fit ÷ decode, and the same for CPU time.
 
 ``memory`` runs the whole ``lanterna fit`` (fit + tiling + manifest) of a large stack in a child
 process and reports its peak resident set size (``ru_maxrss`` of the child).
@@ -34,7 +41,6 @@ import numpy as np
 import pyvips
 
 REPO = Path(__file__).resolve().parents[1]
-sys.path.insert(0, str(REPO))
 
 
 def lights(n: int) -> np.ndarray:
@@ -146,6 +152,73 @@ def throughput(args: argparse.Namespace) -> dict[str, Any]:
         shutil.rmtree(work, ignore_errors=True)
 
 
+def _cpu() -> float:
+    usage = resource.getrusage(resource.RUSAGE_SELF)
+    return float(usage.ru_utime + usage.ru_stime)
+
+
+def one(args: argparse.Namespace) -> dict[str, Any]:
+    """One timed fit in this interpreter (``compare``'s worker): decode, then the fit."""
+    from lanterna.tiler.fit.engine import fit_stream
+    from lanterna.tiler.inputs.lp import read_lp
+    from lanterna.tiler.inputs.stack import StackReader
+
+    lp = Path(args.stack)
+    files, lts = read_lp(lp, lp.parent)
+    work = Path(tempfile.mkdtemp(prefix="lanterna-bench-one-", dir=args.tmp))
+    try:
+        (work / "warm").mkdir()
+        warm = np.asarray(StackReader(files)[:, 0:4])  # imports, kernels from their cache
+        fit_stream(warm, lts, [args.models[0]], work / "warm", holdout_every=args.held)
+        c0, t0 = _cpu(), time.perf_counter()
+        _bare_decode(files)
+        decode, decode_cpu = time.perf_counter() - t0, _cpu() - c0
+        (work / "fit").mkdir()
+        c0, t0 = _cpu(), time.perf_counter()
+        fit_stream(StackReader(files), lts, [args.models[0]], work / "fit",
+                   holdout_every=args.held)
+        return {"decode": decode, "decodeCpu": decode_cpu, "fit": time.perf_counter() - t0,
+                "fitCpu": _cpu() - c0}
+    finally:
+        shutil.rmtree(work, ignore_errors=True)
+
+
+def compare(args: argparse.Namespace) -> dict[str, Any]:
+    work = Path(tempfile.mkdtemp(prefix="lanterna-bench-cmp-", dir=args.tmp))
+    try:
+        lp = make_stack(work / "shots", args.size, args.lights)
+        held = 10 if args.lights >= 20 else 0
+        sides = {"this": sys.executable, "other": args.python}
+        runs: dict[tuple[str, str], list[dict[str, float]]] = {}
+        for r in range(args.rounds):
+            for key in args.models:
+                for h in ((0, held) if held else (0,)):
+                    name = key + (" + leave-one-out" if h else "")
+                    order = list(sides.items()) if r % 2 == 0 else list(sides.items())[::-1]
+                    for side, python in order:
+                        cmd = [python, str(Path(__file__).resolve()), "one", "--stack", str(lp),
+                               "--model", key, "--held", str(h)]
+                        proc = subprocess.run(cmd, capture_output=True, text=True, cwd=REPO)
+                        if proc.returncode != 0:
+                            raise SystemExit(proc.stdout + proc.stderr)
+                        run = json.loads(proc.stdout)
+                        runs.setdefault((name, side), []).append(run)
+                        print(f"round {r + 1}: {side}: {name}: fit {run['fit']:.2f} s, "
+                              f"decode {run['decode']:.2f} s", flush=True)
+        cases: dict[str, Any] = {}
+        for (name, side), rs in runs.items():
+            cases.setdefault(name, {})[side] = {
+                "fitSeconds": [round(x["fit"], 3) for x in rs],
+                "medianVsDecode": round(statistics.median(x["fit"] / x["decode"] for x in rs), 2),
+                "minVsDecode": round(min(x["fit"] / x["decode"] for x in rs), 2),
+                "medianCpuVsDecodeCpu": round(statistics.median(x["fitCpu"] / x["decodeCpu"]
+                                                                for x in rs), 2)}
+        return {"size": args.size, "lights": args.lights, "rounds": args.rounds,
+                "other": args.python, "cases": cases}
+    finally:
+        shutil.rmtree(work, ignore_errors=True)
+
+
 def memory(args: argparse.Namespace) -> dict[str, Any]:
     work = Path(tempfile.mkdtemp(prefix="lanterna-bench-fitmem-", dir=args.tmp))
     try:
@@ -177,7 +250,10 @@ def memory(args: argparse.Namespace) -> dict[str, Any]:
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__,
                                      formatter_class=argparse.RawDescriptionHelpFormatter)
-    parser.add_argument("what", choices=["throughput", "memory"])
+    parser.add_argument("what", choices=["throughput", "memory", "compare", "one"])
+    parser.add_argument("--python", help="compare: the other checkout's interpreter")
+    parser.add_argument("--stack", help="one: the stack's .lp file")
+    parser.add_argument("--held", type=int, default=0, help="one: holdout_every")
     parser.add_argument("--size", type=int, help="image side (4096 / 32768)")
     parser.add_argument("--lights", type=int, help="images in the stack (24 / 8)")
     parser.add_argument("--model", dest="models", action="append",
@@ -187,11 +263,18 @@ def main() -> None:
     parser.add_argument("--json", type=Path, help="write the result here")
     args = parser.parse_args()
     big = args.what == "memory"
-    args.size = args.size or (32768 if big else 4096)
+    if args.what == "one":  # runs in the other checkout's interpreter: its own lanterna
+        print(json.dumps(one(args)))
+        return
+    sys.path.insert(0, str(REPO))
+    if args.what == "compare" and not args.python:
+        parser.error("compare needs --python OTHER_CHECKOUT/.venv/bin/python")
+    args.size = args.size or (32768 if big else 1024 if args.what == "compare" else 4096)
     args.lights = args.lights or (8 if big else 24)
     args.models = args.models or (["ptm-lrgb"] if big else
                                   ["ptm", "ptm-lrgb", "hsh", "normals", "ward"])
-    result = throughput(args) if args.what == "throughput" else memory(args)
+    run = {"throughput": throughput, "memory": memory, "compare": compare}[args.what]
+    result = run(args)
     result["machine"] = {"cpus": os.cpu_count(), "python": platform.python_version(),
                          "libvips": f"{pyvips.version(0)}.{pyvips.version(1)}."
                                     f"{pyvips.version(2)}",

@@ -15,6 +15,7 @@ import numpy.typing as npt
 from lanterna.tiler.formats.hsh_basis import hsh_weights
 from lanterna.tiler.formats.ptm_model import ptm_weights
 
+from .lrgb_kernel import lrgb_band_compiled
 from .normals import ITERATIONS, RANK_WINDOW, SHADOW_FRACTION, solve_normals_band
 from .ward import GLOSS_LIMITS, Ward, fit_ward, predict_ward, quantize_ward
 
@@ -40,9 +41,13 @@ def ptm_rgb_band(band: Band, pinv255: npt.NDArray[np.float32]) -> Out:
     return {"coeffs": _project(pinv255, band)}
 
 
-def ptm_lrgb_band(band: Band, pinv: npt.NDArray[np.float32]) -> Out:
+def ptm_lrgb_band(band: Band, pinv: npt.NDArray[np.float32], *, compiled: bool = True) -> Out:
     """LRGB PTM (ptmfit): ``coeffs (b, W, 6)`` 0–255 units of the normalised luminance and
-    ``rgb (b, W, 3)`` uint8 = ``rint(255 · Σ c·Yn / Σ Yn²)``."""
+    ``rgb (b, W, 3)`` uint8 = ``rint(255 · Σ c·Yn / Σ Yn²)`` (:mod:`.lrgb_kernel`; ``compiled``
+    False: this numpy reference)."""
+    if compiled:
+        coeffs32, rgb8 = lrgb_band_compiled(band, pinv, LUMINANCE_WEIGHTS)
+        return {"coeffs": coeffs32, "rgb": rgb8}
     n, b, w, _ = band.shape
     lum = band @ np.asarray(LUMINANCE_WEIGHTS, np.float32)  # (N, b, W)
     peak = lum.max(axis=0)
@@ -70,7 +75,7 @@ def normals_band(band: Band, lights: Lights, *, rank_window: tuple[float, float]
     0 = the rank window alone, the default for values as stored).
     """
     n, b, w, _ = band.shape
-    lum = (band @ np.asarray(LUMINANCE_WEIGHTS, np.float32)).reshape(n, -1).astype(np.float64)
+    lum = (band @ np.asarray(LUMINANCE_WEIGHTS, np.float32)).reshape(n, -1)  # float32
     nrm, albedo = solve_normals_band(lum, band.reshape(n, -1, 3), lights.astype(np.float64),
                                      rank_window=rank_window, shadow=shadow,
                                      iterations=iterations)
@@ -87,7 +92,7 @@ def ward_band(band: Band, lights: Lights, normals: npt.NDArray[np.float32]) -> O
 def predict_ptm_band(out: Out, light: npt.NDArray[np.float64]) -> Band:
     """A PTM band (float coefficients) relit under ``light``, 0–1 as ``Ptm.relight``."""
     w = ptm_weights(float(light[0]), float(light[1])).astype(np.float32)
-    lum = out["coeffs"].astype(np.float32) @ w
+    lum = np.asarray(out["coeffs"], np.float32) @ w
     if "rgb" in out:
         res = out["rgb"].astype(np.float32) / 255.0 * (lum / 255.0)[..., None]
     else:
@@ -99,13 +104,13 @@ def predict_hsh_band(out: Out, light: npt.NDArray[np.float64]) -> Band:
     """An HSH band (float coefficients) relit under ``light``, clipped to 0–1."""
     terms = out["coeffs"].shape[-1]
     wts = hsh_weights(float(light[0]), float(light[1]), terms)
-    res: Band = np.clip(out["coeffs"].astype(np.float32) @ wts, 0.0, 1.0).astype(np.float32)
+    res: Band = np.clip(np.asarray(out["coeffs"], np.float32) @ wts, 0.0, 1.0).astype(np.float32)
     return res
 
 
 def predict_normals_band(out: Out, light: npt.NDArray[np.float64]) -> Band:
     """Lambert ``albedo · max(0, n·l)`` of a normals band, clipped to 0–1."""
-    shade = np.maximum(out["normals"].astype(np.float32) @ light.astype(np.float32), 0.0)
+    shade = np.maximum(np.asarray(out["normals"], np.float32) @ light.astype(np.float32), 0.0)
     return np.clip(out["albedo"] * shade[..., None], 0.0, 1.0).astype(np.float32)
 
 

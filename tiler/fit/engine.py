@@ -1,9 +1,11 @@
 """Fit every requested model in one streamed pass over a multi-light collection.
 
 One pass reads the images top to bottom in bands of rows (:class:`~lanterna.tiler.inputs.stack.
-StackReader`) and, per band, solves every model twice — on all lights (the layer) and without
-the held-out lights (the leave-one-out report, accumulated as squared errors on the held-out
-images of the same band) — so the images are decoded once whatever the number of models.
+StackReader`, kept 8-bit as decoded) and solves them in cache-sized float sub-bands, each
+twice — on all lights (the layer) and without the held-out lights (the leave-one-out report,
+accumulated as squared errors on the held-out images of the same rows; the linear models predict
+them by one product, :func:`_fused_rows`) — so the images are decoded once whatever the number
+of models.
 
 Memory is bounded by the band, not the image: each band's outputs go to file-backed planes or,
 for the globally quantised PTM/HSH coefficients, to a float spill quantised in a second pass
@@ -22,14 +24,18 @@ from typing import Any, Protocol
 
 import numpy as np
 import numpy.typing as npt
+from threadpoolctl import threadpool_limits
 
+from lanterna.tiler.formats.hsh_basis import hsh_weights
 from lanterna.tiler.formats.planes import PlaneLayer
-from lanterna.tiler.inputs.stack import StackReader
+from lanterna.tiler.formats.ptm_model import ptm_weights
+from lanterna.tiler.inputs.stack import StackReader, to_unit
 from lanterna.tiler.progress import Progress
 from lanterna.tiler.render.shading import linear_to_srgb, srgb_to_linear
 
 from . import bands as fb
 from .hsh import hsh_design_matrix, hsh_pinv
+from .lrgb_kernel import lrgb_held_out_compiled
 from .normals import check_lights
 from .ptm import ptm_design_matrix, ptm_pinv
 from .sinks import Sinks
@@ -39,6 +45,9 @@ Lights = npt.NDArray[np.float64]
 
 #: Bytes of input (N × rows × W × 3 float32) solved at once when the band height is automatic.
 BAND_BUDGET = 48 << 20
+#: Bytes of float input (N × rows × W × 3 float32) solved at once: read bands are split into
+#: sub-bands this size, which stay in the CPU caches with their solvers' temporaries.
+SUB_BAND_BUDGET = 4 << 20
 #: Models the engine fits, by CLI name.
 MODEL_KEYS = ("ptm", "ptm-lrgb", "hsh", "normals", "ward")
 
@@ -91,7 +100,7 @@ class _Solver:
                                   iterations=fb.IRLS_ITERATIONS if self.linear else 0)
             out["normals"] = nrm
             if "ward" in self.keys:
-                normals = nrm["normals"].astype(np.float32)
+                normals = np.asarray(nrm["normals"], np.float32)
                 out["ward"] = {**fb.ward_band(physical, self.lights, normals),
                                "normals": normals}
         return out
@@ -118,6 +127,8 @@ class _Step:
     held: npt.NDArray[np.intp]
     train: npt.NDArray[np.intp]
     layers: bool
+    #: key -> ``(h, N)`` rows predicting the held-out lights straight from the band's samples
+    fused: dict[str, npt.NDArray[np.float32]] = field(default_factory=dict)
     extra: Sequence[Callable[[npt.NDArray[np.float32]],
                              tuple[fb.Out | None, npt.NDArray[np.float64]]]] = ()
     extra_keys: Sequence[str] = ()
@@ -131,15 +142,65 @@ class _Step:
             if outs is not None and out is not None:
                 outs[key] = out
         if self.loo is not None and keys:
-            fitted = self.loo.solve(band[self.train])
-            for k in keys:
-                for j, i in enumerate(self.held):
-                    pred = PREDICT[k](fitted[k], self.full.lights[i])
-                    if self.full.linear and k in ("normals", "ward"):
-                        pred = linear_to_srgb(pred)
-                    diff = pred.astype(np.float64) - band[i]
-                    sse[k][j] = float(np.vdot(diff, diff))
+            sse.update(self._held_out(band, self.loo))
         return outs, sse
+
+    def _held_out(self, band: npt.NDArray[np.float32], loo: _Solver
+                  ) -> dict[str, npt.NDArray[np.float64]]:
+        """The squared errors of the leave-one-out fits on the held-out lights of ``band``.
+
+        The linear models' held-out predictions are one product of the band with their
+        :attr:`fused` rows (no refit, no copy of the training images), LRGB's are fitted and
+        predicted per pixel by a compiled kernel from the band itself; the others are refitted
+        on a copy of the training images and predicted.
+        """
+        sse: dict[str, npt.NDArray[np.float64]] = {}
+        n = band.shape[0]
+        flat = np.ascontiguousarray(band).reshape(n, -1)
+        actual = flat[self.held]
+        for k, rows in self.fused.items():
+            pred = rows @ flat
+            np.clip(pred, 0.0, 1.0, out=pred)
+            pred -= actual
+            sse[k] = np.einsum("ij,ij->i", pred, pred, dtype=np.float64)
+        if "ptm-lrgb" in self.full.keys:  # compiled per pixel, from the band itself
+            basis = np.stack([ptm_weights(float(lt[0]), float(lt[1])).astype(np.float32)
+                              for lt in self.full.lights[self.held]])
+            sse["ptm-lrgb"] = lrgb_held_out_compiled(band, loo.pinv["ptm-lrgb"],
+                                                     fb.LUMINANCE_WEIGHTS, self.train,
+                                                     self.held, basis)
+        rest = [k for k in self.full.keys if k not in self.fused and k != "ptm-lrgb"]
+        if not rest:
+            return sse
+        fitted = loo.solve(band[self.train])
+        for k in rest:
+            sse[k] = np.zeros(len(self.held))
+            for j, i in enumerate(self.held):
+                pred = PREDICT[k](fitted[k], self.full.lights[i])
+                if self.full.linear and k in ("normals", "ward"):
+                    pred = linear_to_srgb(pred)
+                diff = pred.reshape(-1) - actual[j]
+                sse[k][j] = float(np.einsum("i,i->", diff, diff, dtype=np.float64))
+        return sse
+
+
+def _fused_rows(loo: _Solver, lights: Lights, held: npt.NDArray[np.intp],
+                train: npt.NDArray[np.intp]) -> dict[str, npt.NDArray[np.float32]]:
+    """Per linear model, ``(h, N)`` = the held-out lights' basis rows × the leave-one-out
+    pseudo-inverse (zero on the held-out columns): the held-out predictions in one product."""
+    rows: dict[str, npt.NDArray[np.float32]] = {}
+    bases: dict[str, Callable[[float, float], npt.NDArray[np.floating]]] = {
+        "ptm": ptm_weights, "hsh": lambda u, v: hsh_weights(u, v, loo.terms)}
+    pinvs = {"ptm": loo.pinv.get("ptm-lrgb"), "hsh": loo.pinv.get("hsh")}
+    for k in ("ptm", "hsh"):
+        pinv = pinvs[k]
+        if k not in loo.keys or pinv is None:
+            continue
+        basis = np.stack([bases[k](float(lt[0]), float(lt[1])) for lt in lights[held]])
+        full = np.zeros((len(held), len(lights)))
+        full[:, train] = basis.astype(np.float64) @ pinv.astype(np.float64)
+        rows[k] = full.astype(np.float32)
+    return rows
 
 
 class ExtraModel(Protocol):
@@ -224,21 +285,26 @@ def fit_stream(images: Images, lights: Lights, keys: Sequence[str], scratch: Pat
     sinks = Sinks(scratch, w, h)
     bar = progress("fitting " + ", ".join(every), h) if progress else None
     spans = [(y0, min(h, y0 + rows)) for y0 in range(0, h, rows)]
-    step = _Step(full, loo, held, train, layers, [m.step for m in extra],
-                 [m.key for m in extra])
+    step = _Step(full, loo, held, train, layers,
+                 _fused_rows(loo, lights, held, train) if loo is not None else {},
+                 [m.step for m in extra], [m.key for m in extra])
+    results: Iterable[tuple[int, _StepResult]]
     if runner is None:
-        results: Iterable[_StepResult] = (step(band) for band in _prefetched(images, spans))
+        results = ((y1, step(band)) for y1, band in _pieces(images, spans, sub_band_rows(n, w)))
     else:
-        results = runner.bands(images, spans, step)
-    for (_, y1), (outs, band_sse) in zip(spans, results, strict=True):
-        if outs is not None:
-            sinks.take(outs, keys)
-            for m in extra:
-                m.take(outs[m.key])
-        for k in every:
-            sse[k] += band_sse[k]
-        if bar:
-            bar.update(y1)
+        results = zip((y1 for _, y1 in spans), runner.bands(images, spans, step), strict=True)
+    # one BLAS thread: the pass has its own (the read-ahead decode, the kernels'); idle BLAS
+    # threads spin, which on a shared or busy machine costs more than the small products gain
+    with threadpool_limits(limits=1, user_api="blas"):
+        for y1, (outs, band_sse) in results:
+            if outs is not None:
+                sinks.take(outs, keys)
+                for m in extra:
+                    m.take(outs[m.key])
+            for k in every:
+                sse[k] += band_sse[k]
+            if bar:
+                bar.update(y1)
     if hasattr(images, "close"):
         images.close()  # the pass is over: free the decoders before quantising and tiling
     space = "linear" if linear else "display"
@@ -254,19 +320,37 @@ def fit_stream(images: Images, lights: Lights, keys: Sequence[str], scratch: Pat
     return FitResult(fitted, quality, rows)
 
 
-def _prefetched(images: Images, spans: Sequence[tuple[int, int]]
-                ) -> Iterator[npt.NDArray[np.float32]]:
-    """Yield the bands in order, reading the next one in a thread while this one is solved.
+def sub_band_rows(n: int, width: int, budget: int = SUB_BAND_BUDGET) -> int:
+    """Rows solved at once so that the float sub-band ``(n, rows, width, 3)`` fits ``budget``."""
+    return max(1, budget // max(1, n * width * 12))
 
-    libvips decodes without the GIL, so decoding overlaps the numpy work; two bands are held.
+
+def _pieces(images: Images, spans: Sequence[tuple[int, int]], rows: int
+            ) -> Iterator[tuple[int, npt.NDArray[np.float32]]]:
+    """Yield ``(y1, float band)`` sub-bands of ``rows`` rows, in order, of each read band.
+
+    The read bands of a :class:`StackReader` stay as stored (8-bit: a quarter of the float
+    band) and are read a band ahead in a thread (libvips decodes without the GIL); each sub-band
+    becomes float32 only when it is solved, so it and its solvers' temporaries stay in cache.
+    The values are those of ``images[:, y0:y1]``.
     """
-    def read(span: tuple[int, int]) -> npt.NDArray[np.float32]:
-        return np.asarray(images[:, span[0]:span[1]], np.float32)
+    def read(span: tuple[int, int]) -> Any:
+        if isinstance(images, StackReader):
+            return images.native_rows(*span)
+        return images[:, span[0]:span[1]]
 
     with ThreadPoolExecutor(max_workers=1, thread_name_prefix="lanterna-read") as pool:
         ahead = pool.submit(read, spans[0]) if spans else None
-        for i in range(len(spans)):
+        for i, (y0, y1) in enumerate(spans):
             assert ahead is not None
             band = ahead.result()
             ahead = pool.submit(read, spans[i + 1]) if i + 1 < len(spans) else None
-            yield band
+            for r0 in range(0, y1 - y0, rows):
+                r1 = min(y1 - y0, r0 + rows)
+                if isinstance(images, StackReader):
+                    piece = np.empty((len(band), r1 - r0, images.shape[2], 3), np.float32)
+                    for k, (image_rows, full_scale) in enumerate(band):
+                        to_unit(image_rows[r0:r1], full_scale, piece[k])
+                else:
+                    piece = np.asarray(band[:, r0:r1], np.float32)
+                yield y0 + r1, piece

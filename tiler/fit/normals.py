@@ -12,6 +12,8 @@ from typing import Literal
 import numpy as np
 import numpy.typing as npt
 
+from .normals_kernel import rank_window_normals
+
 F64 = npt.NDArray[np.float64]
 F32 = npt.NDArray[np.float32]
 Estimator = Literal["tukey", "huber"]
@@ -33,11 +35,13 @@ _MIN_CONDITION = 1e-8  # det(A) / (trace(A)/3)^3 below this: too few directions 
 _UPPER = ((0, 0), (1, 1), (2, 2), (0, 1), (0, 2), (1, 2))
 
 
-def solve_normals_band(lum: F64, colour: npt.NDArray[np.floating], lights: F64, *,
+def solve_normals_band(lum: npt.NDArray[np.floating], colour: npt.NDArray[np.floating],
+                       lights: F64, *,
                        rank_window: tuple[float, float] = RANK_WINDOW,
                        shadow: float = SHADOW_FRACTION, iterations: int = ITERATIONS,
                        estimator: Estimator = "tukey", tuning: float | None = None,
-                       tol: float = 1e-4, scale_floor: float = 1e-3) -> tuple[F32, F32]:
+                       tol: float = 1e-4, scale_floor: float = 1e-3,
+                       compiled: bool = True) -> tuple[F32, F32]:
     r"""Estimate normals and Lambert albedo by robust photometric stereo (Woodham + IRLS).
 
     Per pixel, with luminance samples :math:`Y_i` under unit lights :math:`l_i`:
@@ -60,7 +64,9 @@ def solve_normals_band(lum: F64, colour: npt.NDArray[np.floating], lights: F64, 
     5. Albedo per channel: :math:`\rho_c = \sum w_i I_{ic} s_i / \sum w_i s_i^2`,
        :math:`s_i = \max(0, n\cdot l_i)`, with the final weights.
 
-    ``iterations=0`` is exactly the 0/1-weighted rank-window fit.
+    ``iterations=0`` is exactly the 0/1-weighted rank-window fit, run by the compiled kernel
+    (:mod:`.normals_kernel`, to float32 rounding of this numpy reference) unless
+    ``compiled=False``.
 
     Parameters
     ----------
@@ -102,6 +108,8 @@ def solve_normals_band(lum: F64, colour: npt.NDArray[np.floating], lights: F64, 
                     tol, scale_floor)
     n, p = lum.shape
     lo, hi = int(np.floor(rank_window[0] * n)), int(np.ceil(rank_window[1] * n))
+    if compiled and iterations == 0:
+        return rank_window_normals(lum, colour, lights, lo, hi, shadow)
     c = TUNING[estimator] if tuning is None else float(tuning)
     normals = np.empty((p, 3), np.float32)
     albedo = np.empty((p, 3), np.float32)
@@ -129,7 +137,7 @@ def check_lights(lights: npt.ArrayLike) -> F64:
     return lf
 
 
-def _check(lum: F64, colour: npt.NDArray[np.floating], lights: F64,
+def _check(lum: npt.NDArray[np.floating], colour: npt.NDArray[np.floating], lights: F64,
            rank_window: tuple[float, float], shadow: float, iterations: int, estimator: str,
            tuning: float | None, tol: float, scale_floor: float) -> F64:
     """Validate the arguments; return the lights as float64."""

@@ -3,7 +3,8 @@
 Per-pixel encodings (normal maps, Ward maps, the LRGB colour plane) are written straight to
 file-backed planes (:class:`~lanterna.tiler.formats.strip_tiff.StripTiffWriter`); PTM/HSH
 coefficients need their global range before they can be quantised, so their floats are appended
-to a :class:`Spill` (4 bytes per coefficient per pixel on disk) with the running min/max, and
+to a :class:`Spill` (in memory up to :data:`SPILL_MEMORY`, then 4 bytes per coefficient per pixel
+on disk) with the running min/max, and
 :meth:`Sinks.finish` makes a second, sequential pass over it that writes the 8-bit planes.
 """
 
@@ -32,13 +33,23 @@ from .hsh import hsh_quantisation, hsh_quantize
 from .ptm import ptm_quantisation, ptm_quantize
 from .ward import GLOSS_LIMITS
 
+#: Bytes of float coefficients a run may keep in memory instead of scratch files.
+SPILL_MEMORY = 512 << 20
+
 
 class Spill:
-    """Float coefficients appended band by band to a scratch file, with their running range."""
+    """Float coefficients appended band by band, with their running range.
 
-    def __init__(self, path: Path) -> None:
-        self.path = path
-        self.file: BinaryIO = open(path, "wb")  # noqa: SIM115 - closed in finish()
+    A spill whose whole image (``height`` rows) fits what is left of the run's ``budget``
+    (a one-item list shared by its spills, :data:`SPILL_MEMORY`) keeps its bands in memory; any
+    other writes them to a scratch file (4 bytes per coefficient per pixel on disk).
+    """
+
+    def __init__(self, path: Path, height: int, budget: list[int] | None = None) -> None:
+        self.path, self.height = path, height
+        self.budget = budget if budget is not None else [SPILL_MEMORY]
+        self.file: BinaryIO | None = None
+        self.held: list[npt.NDArray[np.float32]] | None = None
         self.lo: npt.NDArray[np.float64] | None = None
         self.hi: npt.NDArray[np.float64] | None = None
         self.shapes: list[tuple[int, ...]] = []
@@ -53,11 +64,28 @@ class Spill:
             raise ValueError("the fit produced non-finite coefficients")
         self.lo = lo if self.lo is None else np.minimum(self.lo, lo)
         self.hi = hi if self.hi is None else np.maximum(self.hi, hi)
-        self.file.write(km.data)
+        if self.held is None and self.file is None:  # the first band decides
+            total = km.nbytes // max(1, km.shape[1]) * self.height
+            if total <= self.budget[0]:
+                self.budget[0] -= total
+                self.held = []
+            else:
+                self.file = open(self.path, "wb")  # noqa: SIM115 - closed in bands()
         self.shapes.append(km.shape)
+        if self.held is not None:
+            self.held.append(km)  # a view keeps only the solver's own output alive
+        else:
+            assert self.file is not None
+            self.file.write(km.data)
 
     def bands(self) -> Any:
-        """Yield the bands back in order, ``(K, b, …)`` (the file is deleted after the last)."""
+        """Yield the bands back in order, ``(K, b, …)`` (each freed, or the file deleted)."""
+        if self.held is not None:
+            while self.held:
+                yield self.held.pop(0)
+            return
+        if self.file is None:
+            return
         self.file.close()
         with open(self.path, "rb") as f:
             for shape in self.shapes:
@@ -72,6 +100,7 @@ class Sinks:
         self.scratch, self.width, self.height = Path(scratch), width, height
         self.writers: dict[str, StripTiffWriter] = {}
         self.spills: dict[str, Spill] = {}
+        self.budget = [SPILL_MEMORY]  # shared by the run's spills
 
     def _write(self, name: str, rows: npt.NDArray[np.uint8]) -> None:
         if name not in self.writers:
@@ -82,22 +111,23 @@ class Sinks:
 
     def _spill(self, name: str, values: npt.NDArray[np.float32]) -> None:
         if name not in self.spills:
-            self.spills[name] = Spill(self.scratch / f"{name}.f32")
+            self.spills[name] = Spill(self.scratch / f"{name}.f32", self.height, self.budget)
         self.spills[name].append(values)
 
     def take(self, outs: dict[str, fb.Out], keys: Sequence[str]) -> None:
         for k in ("ptm", "ptm-lrgb", "hsh"):
             if k in keys:
-                self._spill(k, outs[k]["coeffs"].astype(np.float32))
+                self._spill(k, np.asarray(outs[k]["coeffs"], np.float32))
         if "ptm-lrgb" in keys:
-            self._write("ptm-lrgb-color", outs["ptm-lrgb"]["rgb"].astype(np.uint8))
+            self._write("ptm-lrgb-color", np.asarray(outs["ptm-lrgb"]["rgb"], np.uint8))
         if {"normals", "ward"} & set(keys):
-            self._write("normals", encode_normals(outs["normals"]["normals"].astype(np.float32)))
+            self._write("normals", encode_normals(np.asarray(outs["normals"]["normals"],
+                                                             np.float32)))
         if "normals" in keys:
             self._write("albedo", _to8(outs["normals"]["albedo"]))
         if "ward" in keys:
             for m in ("kd", "ks", "gloss"):
-                self._write(f"ward-{m}", outs["ward"][m].astype(np.uint8))
+                self._write(f"ward-{m}", np.asarray(outs["ward"][m], np.uint8))
 
     def finish(self, keys: Sequence[str], terms: int, space: str,
                progress: Callable[[str, int], Progress] | None) -> dict[str, PlaneLayer]:

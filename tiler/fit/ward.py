@@ -28,14 +28,16 @@ import numpy.typing as npt
 
 from lanterna.tiler.inputs.stack import StackReader
 
+from .ward_kernel import ward_band_compiled
+from .ward_solve import MIN_COSI, SATURATED, solve_ward_band
+
+__all__ = ["ALPHA_STEPS", "GLOSS_LIMITS", "MIN_COSI", "SATURATED", "Ward", "alpha_grid", "fit_ward",
+           "predict_ward", "quantize_ward", "render_ward", "ward_basis"]
+
 #: ``glossLimits`` of the written layer and the range of the α grid.
 GLOSS_LIMITS = (0.03, 0.6)
 #: Number of α values tried (log-spaced, snapped to the 8-bit gloss levels).
 ALPHA_STEPS = 24
-#: Samples with ``n·l`` below this are shadowed/grazing and excluded.
-MIN_COSI = 0.05
-#: Samples with any channel at or above this (stack units, 0–1) are saturated and excluded.
-SATURATED = 0.99
 
 
 def alpha_grid(steps: int = ALPHA_STEPS,
@@ -91,7 +93,7 @@ class Ward:
 
 def fit_ward(stack: npt.NDArray[np.floating] | StackReader, lights: npt.NDArray[np.floating],
              normals: npt.NDArray[np.floating], *, alphas: npt.NDArray[np.float64] | None = None,
-             band_rows: int = 32
+             band_rows: int = 32, compiled: bool = True
              ) -> tuple[npt.NDArray[np.float32], npt.NDArray[np.float32], npt.NDArray[np.float32]]:
     """Fit Lambert + isotropic Ward per pixel with the normal fixed.
 
@@ -115,9 +117,12 @@ def fit_ward(stack: npt.NDArray[np.floating] | StackReader, lights: npt.NDArray[
     ``ks`` is capped at 1 (the stored range), with kd refitted for the capped value.
     Samples with ``n·l < MIN_COSI`` or any channel ``≥ SATURATED`` are excluded.  Per α, the
     per-pixel normal equations ``[[Σaa, Σab], [Σab, Σbb]]·(kd_c, ks_c) = (Σa·y_c, Σb·y_c)``
-    (``a = cosi``, ``b`` the Ward term) are solved for the three channels at once; a channel
-    with ``ks < 0`` falls back to Lambert (``ks = 0``), one with ``kd < 0`` to ``kd = 0``.
+    (``a = cosi``, ``b`` the Ward term) are solved for the three channels at once; the ks
+    colour is then kept within ``MAX_SPECULAR_ANGLE`` of the grey–diffuse cone (else projected
+    onto it), an α is tried only where ``MIN_LOBE_SAMPLES`` samples lie in its lobe, and a channel
+    whose kd would be negative gets ``kd = 0`` and its ks alone (:mod:`.ward_solve`).
     Rows are processed in bands of ``band_rows``, so temporaries are ``O(N·band·W)``.
+    ``compiled`` runs the Numba kernel (:mod:`.ward_kernel`), else the numpy reference.
     """
     n, h, w, _ = stack.shape
     if lights.shape != (n, 3) or normals.shape != (h, w, 3):
@@ -126,57 +131,16 @@ def fit_ward(stack: npt.NDArray[np.floating] | StackReader, lights: npt.NDArray[
     kd_out = np.empty((h, w, 3), np.float32)
     ks_out = np.empty((h, w, 3), np.float32)
     al_out = np.empty((h, w), np.float32)
+    lf = np.asarray(lights, np.float64)
     for y0 in range(0, h, band_rows):
-        raw = np.asarray(stack[:, y0:y0 + band_rows], np.float64)  # (N, b, W, 3)
-        b = raw.shape[1]
         nrm = np.asarray(normals[y0:y0 + band_rows], np.float64)
-        cosi0, _ = ward_basis(nrm, lights, 1.0)
-        valid = (cosi0 >= MIN_COSI) & (raw.max(axis=3) < SATURATED)  # (N, b, W)
-        y = raw * valid[..., None]
-        yy = np.einsum("nbwc,nbwc->bwc", y, y)
-        a = cosi0 * valid
-        saa = np.einsum("nbw,nbw->bw", a, a)
-        say = np.einsum("nbw,nbwc->bwc", a, y)
-        best = np.full((b, w), np.inf)
-        kd_b = np.zeros((b, w, 3))
-        ks_b = np.zeros((b, w, 3))
-        al_b = np.full((b, w), grid[-1])
-        # Lambert-only solution (shared by every α's fallback)
-        kd_l = np.maximum(say / np.maximum(saa, 1e-12)[..., None], 0.0)
-        for alpha in grid:
-            _, bw = ward_basis(nrm, lights, alpha)
-            bw *= valid
-            sab = np.einsum("nbw,nbw->bw", a, bw)
-            sbb = np.einsum("nbw,nbw->bw", bw, bw)
-            sby = np.einsum("nbw,nbwc->bwc", bw, y)
-            det = saa * sbb - sab * sab
-            ok = det > 1e-12 * np.maximum(saa * sbb, 1e-30)
-            inv = np.where(ok, 1.0 / np.where(ok, det, 1.0), 0.0)[..., None]
-            kd = (sbb[..., None] * say - sab[..., None] * sby) * inv
-            ks = (saa[..., None] * sby - sab[..., None] * say) * inv
-            # kd < 0: specular only; ks < 0 (or singular): Lambert
-            ks_only = np.maximum(sby / np.maximum(sbb, 1e-30)[..., None], 0.0)
-            neg_kd = kd < 0
-            kd = np.where(neg_kd, 0.0, kd)
-            ks = np.where(neg_kd, ks_only, ks)
-            fall = (ks < 0) | ~ok[..., None]
-            kd = np.where(fall, kd_l, kd)
-            ks = np.where(fall, 0.0, ks)
-            # ks is stored 0–1: cap it and refit kd for the capped ks
-            over = ks > 1.0
-            kd_capped = (say - sab[..., None]) / np.maximum(saa, 1e-12)[..., None]
-            kd = np.where(over, np.maximum(kd_capped, 0.0), kd)
-            ks = np.where(over, 1.0, ks)
-            sse = (yy - 2 * (kd * say + ks * sby) + kd * kd * saa[..., None]
-                   + 2 * kd * ks * sab[..., None] + ks * ks * sbb[..., None]).sum(axis=2)
-            better = sse < best
-            best = np.where(better, sse, best)
-            kd_b = np.where(better[..., None], kd, kd_b)
-            ks_b = np.where(better[..., None], ks, ks_b)
-            al_b = np.where(better, alpha, al_b)
-        kd_out[y0:y0 + b] = kd_b
-        ks_out[y0:y0 + b] = ks_b
-        al_out[y0:y0 + b] = al_b
+        b = nrm.shape[0]
+        maps: tuple[npt.NDArray[np.floating], ...]
+        if compiled:  # (N, b, W, 3) as float32, the kernel's input
+            maps = ward_band_compiled(np.asarray(stack[:, y0:y0 + b], np.float32), nrm, lf, grid)
+        else:
+            maps = solve_ward_band(np.asarray(stack[:, y0:y0 + b], np.float64), nrm, lf, grid)
+        kd_out[y0:y0 + b], ks_out[y0:y0 + b], al_out[y0:y0 + b] = maps
     return kd_out, ks_out, al_out
 
 

@@ -115,6 +115,16 @@ def _open_rgb(path: Path, access: str = "sequential") -> pyvips.Image:
     return img
 
 
+def to_unit(band: npt.NDArray[np.generic], full_scale: float | None,
+            out: npt.NDArray[np.float32]) -> None:
+    """Write ``band`` (as stored) into ``out`` as float32 in 0–1, the values of
+    :func:`load_image` (one division, no temporary)."""
+    if full_scale is None:
+        out[...] = band
+    else:
+        np.divide(band, np.float32(full_scale), out=out)
+
+
 class StackReader:
     """A multi-light collection on disk, read lazily in row bands.
 
@@ -174,13 +184,28 @@ class StackReader:
         n, h, w, _ = self.shape
         y0, y1 = max(0, y0), min(h, y1)
         out = np.empty((n, max(0, y1 - y0), w, 3), np.float32)
+        for i, (band, full_scale) in enumerate(self.native_rows(y0, y1)):
+            to_unit(band, full_scale, out[i])
+        return out
+
+    def native_rows(self, y0: int, y1: int
+                    ) -> list[tuple[npt.NDArray[np.generic], float | None]]:
+        """Rows ``y0:y1`` of every image as stored: per image ``(rows, W, 3)`` in its sample
+        format (a view of the decoded bytes) and the divisor to 0–1 (``None`` for float).
+
+        A quarter of the float32 band's memory for 8-bit images; :func:`to_unit` of each gives
+        exactly :meth:`rows`.
+        """
+        n, h, w, _ = self.shape
+        y0, y1 = max(0, y0), min(h, y1)
         if y1 <= y0:
-            return out
+            return [(np.empty((0, w, 3), np.uint8), 255.0) for _ in self.files]
         if not self.reopen and (not self._regions or y0 < self._next_row):
             self._regions = []
             for path in self.files:
                 img = _open_rgb(path)
                 self._regions.append((img, pyvips.Region.new(img)))
+        bands: list[tuple[npt.NDArray[np.generic], float | None]] = []
         for i, path in enumerate(self.files):
             # reopen: tiled files, each opened for these rows only (no decoder state kept)
             img = _open_rgb(path, "random") if self.reopen else self._regions[i][0]
@@ -192,13 +217,10 @@ class StackReader:
                 first = str(err).strip().splitlines()[0] if str(err).strip() else "read error"
                 raise LanternaInputError(path, f"cannot read image ({first})") from None
             band = np.frombuffer(raw, _NUMPY_FORMAT[img.format]).reshape(y1 - y0, w, 3)
-            if img.format in _FULL_SCALE:  # no temporary: the same values as load_image
-                np.divide(band, np.float32(_FULL_SCALE[img.format]), out=out[i])
-            else:
-                out[i] = band
+            bands.append((band, _FULL_SCALE.get(img.format)))
             del region, img
         self._next_row = y1
-        return out
+        return bands
 
     def subset(self, indices: Sequence[int] | npt.NDArray[np.integer]) -> StackReader:
         """Return a reader over the images ``indices`` (in that order)."""

@@ -1,0 +1,141 @@
+"""The optimised fit paths against their references on small stacks: the compiled normals and
+Ward kernels against the numpy solvers, and the fused leave-one-out report of the linear models
+against a float64 least-squares refit written out here."""
+
+from __future__ import annotations
+
+import math
+from pathlib import Path
+
+import numpy as np
+import numpy.typing as npt
+import pytest
+
+from lanterna.tiler.fit import sinks
+from lanterna.tiler.fit.bands import predict_ptm_band, ptm_lrgb_band
+from lanterna.tiler.fit.engine import fit_stream
+from lanterna.tiler.fit.hsh import hsh_design_matrix
+from lanterna.tiler.fit.normals import solve_normals_band
+from lanterna.tiler.fit.ptm import ptm_design_matrix, ptm_pinv
+from lanterna.tiler.fit.ward import fit_ward
+from tests.python.fixtures.photos import spiral_lights
+
+F64 = npt.NDArray[np.float64]
+N, H, W = 36, 20, 28
+
+
+def _scene(seed: int = 5) -> tuple[npt.NDArray[np.float32], F64, F64]:
+    """A glossy bumpy object with noise, shadows, saturation, black pixels and tied samples."""
+    rng = np.random.default_rng(seed)
+    lights = spiral_lights(N, (12.0, 80.0))
+    y, x = np.mgrid[0:H, 0:W].astype(np.float64)
+    g = np.stack([0.6 * np.sin(x / 3.0), 0.5 * np.cos(y / 4.0), np.ones_like(x)], axis=-1)
+    normals = g / np.linalg.norm(g, axis=-1, keepdims=True)
+    kd = rng.uniform(0.1, 0.7, (H, W, 3))
+    ks = rng.uniform(0.0, 0.3, (H, W, 1)) * rng.uniform(0.6, 1.0, (H, W, 3))
+    half = lights + np.array([0.0, 0.0, 1.0])
+    half /= np.linalg.norm(half, axis=1, keepdims=True)
+    cosi = np.maximum(np.einsum("nc,hwc->nhw", lights, normals), 0.0)
+    nh = np.maximum(np.einsum("nc,hwc->nhw", half, normals), 1e-4)
+    spec = np.exp(-(1 - nh**2) / nh**2 / 0.2**2)
+    img = kd * cosi[..., None] + ks * spec[..., None] + rng.normal(0, 0.01, (N, H, W, 3))
+    img[:, :, :3] = np.round(img[:, :, :3] * 6) / 6  # ties in the rank selection
+    img[:, 0, 0] = 0.0  # a black pixel
+    return np.clip(img, 0.0, 1.0).astype(np.float32), lights, normals
+
+
+def test_compiled_normals_equal_the_numpy_rank_window() -> None:
+    img, lights, _ = _scene()
+    lum = (img @ np.array([0.2125, 0.7154, 0.0721], np.float32)).reshape(N, -1)
+    colour = img.reshape(N, -1, 3)
+    for window, shadow in (((0.25, 0.9), 0.05), ((0.0, 1.0), 0.0), ((0.5, 0.6), 0.3)):
+        ref = solve_normals_band(lum, colour, lights, rank_window=window, shadow=shadow,
+                                 iterations=0, compiled=False)
+        out = solve_normals_band(lum, colour, lights, rank_window=window, shadow=shadow,
+                                 iterations=0)
+        for a, b in zip(ref, out, strict=True):  # float32 rounding of another summation order
+            assert np.abs(a - b).max() <= 1e-6
+        assert not np.array_equal(ref[0][:, 2], np.ones(H * W))  # the fit did something
+
+
+def test_compiled_ward_equals_the_numpy_solve() -> None:
+    img, lights, normals = _scene()
+    ref = fit_ward(img, lights, normals, band_rows=7, compiled=False)
+    out = fit_ward(img, lights, normals, band_rows=7)
+    assert np.abs(ref[0] - out[0]).max() <= 1e-5  # kd
+    assert np.abs(ref[1] - out[1]).max() <= 1e-5  # ks
+    glossy = ref[1].max(axis=-1) >= 1e-3
+    assert glossy.mean() > 0.3
+    # α: equal wherever it matters (ks > 0); where ks ≈ 0 every α ties and either may win
+    assert np.array_equal(ref[2][glossy], out[2][glossy])
+
+
+@pytest.mark.parametrize("key", ["ptm", "hsh"])
+def test_fused_leave_one_out_equals_a_least_squares_refit(tmp_path: Path, key: str) -> None:
+    """PSNR of every held-out light from an independent float64 fit on the training lights."""
+    img, lights, _ = _scene(8)
+    every = 7
+    report = fit_stream(img, lights, [key], tmp_path, holdout_every=every, layers=False,
+                        band_rows=6).quality[key]
+    held = np.arange(0, N, every)
+    train = np.setdiff1d(np.arange(N), held)
+
+    def design(lt: F64) -> F64:
+        return ptm_design_matrix(lt) if key == "ptm" else hsh_design_matrix(lt, 9).astype(float)
+
+    coeffs, *_ = np.linalg.lstsq(design(lights[train]), img[train].reshape(len(train), -1)
+                                 .astype(np.float64), rcond=None)
+    pred = np.clip(design(lights[held]) @ coeffs, 0.0, 1.0)
+    mse = ((pred - img[held].reshape(len(held), -1)) ** 2).mean(axis=1)
+    expected = [10 * math.log10(1 / m) for m in mse]
+    assert report["heldOut"] == held.tolist()
+    assert np.allclose(report["psnr"], expected, atol=2e-3), (report["psnr"], expected)
+
+
+def test_compiled_lrgb_equals_the_numpy_band_fit() -> None:
+    img, lights, _ = _scene()
+    pinv = ptm_pinv(ptm_design_matrix(lights)).astype(np.float32)
+    ref = ptm_lrgb_band(img, pinv, compiled=False)
+    out = ptm_lrgb_band(img, pinv)
+    assert out["coeffs"].shape == ref["coeffs"].shape == (H, W, 6)
+    assert np.abs(ref["coeffs"] - out["coeffs"]).max() <= 1e-6 * np.abs(ref["coeffs"]).max()
+    diff = np.abs(ref["rgb"].astype(int) - out["rgb"])
+    assert diff.max() <= 1 and np.count_nonzero(diff) <= 0.001 * diff.size
+    assert out["rgb"][0, 0].tolist() == [0, 0, 0] and ref["rgb"].max() > 100
+
+
+def test_spill_on_disk_equals_spill_in_memory(tmp_path: Path,
+                                              monkeypatch: pytest.MonkeyPatch) -> None:
+    """PTM/HSH coefficients kept in memory (small fits) or spilled to disk (past the budget)
+    give the same planes, and the scratch file is gone at the end."""
+    img, lights, _ = _scene(3)
+    keys = ["ptm", "ptm-lrgb", "hsh"]
+    (tmp_path / "memory").mkdir()
+    (tmp_path / "disk").mkdir()
+    kept = fit_stream(img, lights, keys, tmp_path / "memory", band_rows=6).layers
+    monkeypatch.setattr(sinks, "SPILL_MEMORY", 0)
+    spilled = fit_stream(img, lights, keys, tmp_path / "disk", band_rows=6).layers
+    assert not list((tmp_path / "disk").glob("*.f32"))
+    for k in keys:
+        a, b = kept[k].channels(), spilled[k].channels()
+        assert a.keys() == b.keys() and all(np.array_equal(a[c], b[c]) for c in a)
+        assert any(np.ptp(a[c]) > 0 for c in a)
+
+
+def test_compiled_lrgb_leave_one_out_equals_refit_and_predict(tmp_path: Path) -> None:
+    """The LRGB report fitted and predicted per pixel from the band equals the numpy band fit
+    on a copy of the training images followed by the PTM prediction."""
+    img, lights, _ = _scene(9)
+    every = 5
+    report = fit_stream(img, lights, ["ptm-lrgb"], tmp_path, holdout_every=every,
+                        layers=False, band_rows=7).quality["ptm-lrgb"]
+    held = np.arange(0, N, every)
+    train = np.setdiff1d(np.arange(N), held)
+    fitted = ptm_lrgb_band(img[train], ptm_pinv(ptm_design_matrix(lights[train]))
+                           .astype(np.float32), compiled=False)
+    expected = []
+    for i in held:
+        pred = predict_ptm_band(fitted, lights[i]).astype(np.float64)
+        expected.append(10 * math.log10(1 / np.mean((pred - img[i]) ** 2)))
+    assert report["heldOut"] == held.tolist()
+    assert np.allclose(report["psnr"], expected, atol=2e-3), (report["psnr"], expected)

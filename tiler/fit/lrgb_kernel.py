@@ -1,0 +1,140 @@
+"""The LRGB PTM band fit of :func:`~lanterna.tiler.fit.bands.ptm_lrgb_band`, compiled per pixel.
+
+numpy makes six passes over the band for it (luminance, peak, normalisation, the coefficient
+product, the colour's energy and projection, each a full-size temporary); compiled, a pixel reads
+its N samples once: ``Y = 0.2125 R + 0.7154 G + 0.0721 B``, ``Yn = Y / max Y`` (0 where the peak
+is ≤ 1e-6), the six coefficients ``255 · pinv @ Yn`` and the colour ``rint(255 · Σ c·Yn / Σ Yn²)``
+(÷ 1 where ``Σ Yn² ≤ 1e-12``).  Sums run in float64, so the coefficients agree with the numpy
+reference (``compiled=False``) to float32 rounding and a colour byte may differ by one where
+``255 · colour`` is within rounding of a half (tests/python/fit/test_engine_kernels.py).
+"""
+
+from __future__ import annotations
+
+import numba
+import numpy as np
+import numpy.typing as npt
+
+from . import compiled  # noqa: F401 - the threading layer, before any kernel runs
+
+_CHUNK = 512  # pixels per parallel task
+
+
+@numba.njit(cache=True, parallel=True, nogil=True)
+def _lrgb(band: npt.NDArray[np.float32], pinv: npt.NDArray[np.float64],
+          weights: npt.NDArray[np.float64], coeffs: npt.NDArray[np.float32],
+          rgb: npt.NDArray[np.uint8]) -> None:
+    n, p = band.shape[0], band.shape[1]
+    k = pinv.shape[0]
+    for chunk in numba.prange((p + _CHUNK - 1) // _CHUNK):
+        q0, q1 = chunk * _CHUNK, min(p, (chunk + 1) * _CHUNK)
+        lum = np.empty((q1 - q0, n))
+        for i in range(n):  # light-major input read in order, into pixel-major luminance
+            for q in range(q0, q1):
+                lum[q - q0, i] = (weights[0] * band[i, q, 0] + weights[1] * band[i, q, 1]
+                                  + weights[2] * band[i, q, 2])
+        proj = np.zeros((q1 - q0, 3))
+        energy = np.zeros(q1 - q0)
+        for q in range(q0, q1):
+            y = lum[q - q0]
+            peak = y.max()
+            scale = 1.0 / peak if peak > 1e-6 else 0.0
+            for i in range(n):
+                y[i] *= scale
+                energy[q - q0] += y[i] * y[i]
+            for t in range(k):
+                acc = 0.0
+                for i in range(n):
+                    acc += pinv[t, i] * y[i]
+                coeffs[q, t] = 255.0 * acc
+        for i in range(n):
+            for q in range(q0, q1):
+                yn = lum[q - q0, i]
+                for c in range(3):
+                    proj[q - q0, c] += band[i, q, c] * yn
+        for q in range(q0, q1):
+            e = energy[q - q0]
+            inv = 1.0 / e if e > 1e-12 else 1.0
+            for c in range(3):
+                v = np.rint(proj[q - q0, c] * inv * 255.0)
+                rgb[q, c] = np.uint8(min(max(v, 0.0), 255.0))
+
+
+def lrgb_band_compiled(band: npt.NDArray[np.float32], pinv: npt.NDArray[np.floating],
+                       weights: tuple[float, float, float]
+                       ) -> tuple[npt.NDArray[np.float32], npt.NDArray[np.uint8]]:
+    """``coeffs (b, W, 6)`` float32 (0–255 units) and ``rgb (b, W, 3)`` uint8 of one band
+    ``(N, b, W, 3)`` float32 in 0–1, ``pinv`` the ``(6, N)`` PTM pseudo-inverse."""
+    n, b, w, _ = band.shape
+    coeffs = np.empty((b * w, pinv.shape[0]), np.float32)
+    rgb = np.empty((b * w, 3), np.uint8)
+    _lrgb(np.ascontiguousarray(band, np.float32).reshape(n, b * w, 3),
+          np.ascontiguousarray(pinv, np.float64), np.asarray(weights, np.float64), coeffs, rgb)
+    return coeffs.reshape(b, w, -1), rgb.reshape(b, w, 3)
+
+
+@numba.njit(cache=True, parallel=True, nogil=True)
+def _lrgb_held_out(band: npt.NDArray[np.float32], pinv: npt.NDArray[np.float64],
+                   weights: npt.NDArray[np.float64], train: npt.NDArray[np.intp],
+                   held: npt.NDArray[np.intp], basis: npt.NDArray[np.float64],
+                   sse: npt.NDArray[np.float64]) -> None:
+    n_train, p, h = train.shape[0], band.shape[1], held.shape[0]
+    k = pinv.shape[0]
+    chunks = (p + _CHUNK - 1) // _CHUNK
+    for chunk in numba.prange(chunks):
+        y = np.empty(n_train)
+        coeffs = np.empty(k)
+        for q in range(chunk * _CHUNK, min(p, (chunk + 1) * _CHUNK)):
+            for j in range(n_train):
+                i = train[j]
+                y[j] = (weights[0] * band[i, q, 0] + weights[1] * band[i, q, 1]
+                        + weights[2] * band[i, q, 2])
+            peak = y.max()
+            scale = 1.0 / peak if peak > 1e-6 else 0.0
+            energy = 0.0
+            p0 = p1 = p2 = 0.0
+            for j in range(n_train):
+                y[j] *= scale
+                energy += y[j] * y[j]
+                i = train[j]
+                p0 += band[i, q, 0] * y[j]
+                p1 += band[i, q, 1] * y[j]
+                p2 += band[i, q, 2] * y[j]
+            for t in range(k):
+                acc = 0.0
+                for j in range(n_train):
+                    acc += pinv[t, j] * y[j]
+                coeffs[t] = 255.0 * acc
+            inv = 1.0 / energy if energy > 1e-12 else 1.0
+            rgb0 = min(max(np.rint(p0 * inv * 255.0), 0.0), 255.0) / 255.0
+            rgb1 = min(max(np.rint(p1 * inv * 255.0), 0.0), 255.0) / 255.0
+            rgb2 = min(max(np.rint(p2 * inv * 255.0), 0.0), 255.0) / 255.0
+            for m in range(h):
+                lum = 0.0
+                for t in range(k):
+                    lum += coeffs[t] * basis[m, t]
+                lum /= 255.0
+                i = held[m]
+                d0 = min(max(rgb0 * lum, 0.0), 1.0) - band[i, q, 0]
+                d1 = min(max(rgb1 * lum, 0.0), 1.0) - band[i, q, 1]
+                d2 = min(max(rgb2 * lum, 0.0), 1.0) - band[i, q, 2]
+                sse[chunk, m] += d0 * d0 + d1 * d1 + d2 * d2
+
+
+def lrgb_held_out_compiled(band: npt.NDArray[np.float32], pinv: npt.NDArray[np.floating],
+                           weights: tuple[float, float, float], train: npt.NDArray[np.intp],
+                           held: npt.NDArray[np.intp], basis: npt.NDArray[np.floating]
+                           ) -> npt.NDArray[np.float64]:
+    """Squared errors ``(h,)`` on the ``held`` lights of an LRGB PTM fitted to the ``train``
+    lights of ``band (N, b, W, 3)`` (``pinv`` their ``(6, len(train))`` pseudo-inverse,
+    ``basis (h, 6)`` the held-out lights' PTM weights): the fit of :func:`lrgb_band_compiled`
+    and the prediction of :func:`~lanterna.tiler.fit.bands.predict_ptm_band` per pixel, without
+    copying the training images.  Summed per chunk, then over chunks in order (deterministic)."""
+    n, b, w, _ = band.shape
+    flat = np.ascontiguousarray(band, np.float32).reshape(n, b * w, 3)
+    sse = np.zeros(((b * w + _CHUNK - 1) // _CHUNK, len(held)))
+    _lrgb_held_out(flat, np.ascontiguousarray(pinv, np.float64), np.asarray(weights, np.float64),
+                   np.ascontiguousarray(train, np.intp), np.ascontiguousarray(held, np.intp),
+                   np.ascontiguousarray(basis, np.float64), sse)
+    out: npt.NDArray[np.float64] = sse.sum(axis=0)
+    return out
