@@ -100,12 +100,24 @@ def _read_pass(files: list[Path], rows: int) -> None:
 
 
 def _fit(files: list[Path], lts: np.ndarray, key: str, held: int, scratch: Path) -> None:
-    from lanterna.tiler.fit.engine import fit_stream
+    """One streamed fit of ``key``; a PCA basis (rbf, bilinear) also makes its sampling pass
+    first, as ``lanterna fit`` does (:func:`~lanterna.tiler.fit.run.fit_sets`)."""
+    from lanterna.tiler.fit.engine import auto_band_rows, fit_stream
+    from lanterna.tiler.fit.pca import PcaSpec
+    from lanterna.tiler.fit.pca_band import pca_models
+    from lanterna.tiler.formats.pca_model import PCA_TYPES
     from lanterna.tiler.inputs.stack import StackReader
 
     out = Path(tempfile.mkdtemp(dir=scratch))
     try:
-        fit_stream(StackReader(files), lts, [key], out, holdout_every=held)
+        stack = StackReader(files)
+        keys, extra = [key], []
+        if key in PCA_TYPES:
+            n, _, width, _ = stack.shape
+            held_at = np.arange(0, n, held) if held else np.zeros(0, np.intp)
+            keys, extra = [], pca_models(stack, lts, [PcaSpec(key)], held_at, out,
+                                         band_rows=auto_band_rows(n, width))
+        fit_stream(stack, lts, keys, out, holdout_every=held, extra=extra)
     finally:
         shutil.rmtree(out)
 
