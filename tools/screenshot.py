@@ -30,7 +30,7 @@ from typing import Any
 from werkzeug.serving import make_server
 
 from lanterna.server.app import create_app
-from lanterna.tiler.demo.dataset import build_demo
+from lanterna.tiler.demo.dataset import build_demo, demo_is_current
 
 REPO = Path(__file__).resolve().parents[1]
 DRIVER = REPO / "tests" / "browser" / "page-script.mjs"
@@ -66,7 +66,7 @@ def main() -> int:
     parser.add_argument("--root", type=Path, default=REPO / "datasets")
     parser.add_argument("--out-dir", type=Path, default=REPO / "docs")
     args = parser.parse_args()
-    if not (args.root / "demo" / "presets.json").is_file():
+    if not demo_is_current(args.root / "demo"):
         build_demo(args.root / "demo", force=True)
     logging.getLogger("werkzeug").setLevel(logging.ERROR)  # no request lines
     config = {"DATA_ROOT": args.root.resolve(), "AUTHORING_TOKEN": secrets.token_urlsafe(24)}

@@ -118,7 +118,7 @@ def run_serve(args: argparse.Namespace) -> int:
 
 
 def run_demo(args: argparse.Namespace) -> int:
-    from lanterna.tiler.demo.dataset import build_demo
+    from lanterna.tiler.demo.dataset import build_demo, demo_is_current
 
     listener = None
     if not args.no_serve:  # refuse a busy port before the build, not after
@@ -128,8 +128,10 @@ def run_demo(args: argparse.Namespace) -> int:
         if listener is None:
             return 1
     out = args.root / "demo"
-    if args.force or not (out / "lanterna.json").is_file():
-        print(f"building the demo dataset in {out} …", flush=True)
+    if args.force or not demo_is_current(out):
+        again = (out / "lanterna.json").is_file() and not args.force
+        print(f"{'rebuilding (from an older Lanterna)' if again else 'building'} the demo "
+              f"dataset in {out} …", flush=True)
         build_demo(out, force=True)
         if listener is not None:
             print_written(out, details=False)

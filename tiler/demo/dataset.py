@@ -19,6 +19,7 @@ It ships a preset library (:mod:`.presets`) and a pixel size of 0.05 mm (a scale
 
 from __future__ import annotations
 
+import json
 import shutil
 from pathlib import Path
 
@@ -59,6 +60,10 @@ from .tablet import make_demo_object
 
 DEMO_SIZE = (1536, 1152)
 N_LIGHTS = 48
+#: The demo's edition, in its ``lanterna.json`` ``source``: ``lanterna demo`` and
+#: ``make screenshot`` rebuild a demo of another edition (raise it when the demo gains a layer or
+#: a preset).
+DEMO_SOURCE = "synthetic demo, edition 15"
 #: The demo RBF's σ (see the module docstring).
 DEMO_RBF_SIGMA = 0.2
 F32 = npt.NDArray[np.float32]
@@ -106,6 +111,15 @@ def _underdrawing(width: int, height: int) -> F32:
     return np.asarray(img, np.float32) / 255.0
 
 
+def demo_is_current(out: Path) -> bool:
+    """Whether ``out`` holds a demo dataset of this edition (:data:`DEMO_SOURCE`)."""
+    try:
+        desc = json.loads((Path(out) / "lanterna.json").read_text(encoding="utf-8"))
+    except (OSError, ValueError):
+        return False
+    return isinstance(desc, dict) and desc.get("source") == DEMO_SOURCE
+
+
 def build_demo(out: Path, *, base_url: str = DEFAULT_BASE_URL, force: bool = False,
                size: tuple[int, int] = DEMO_SIZE) -> Path:
     """Generate the demo object, fit its layers and write them as dataset ``out``."""
@@ -143,7 +157,7 @@ def build_demo(out: Path, *, base_url: str = DEFAULT_BASE_URL, force: bool = Fal
                "maps, spectral bands (the infrared band reveals an underdrawing) and a "
                "false-colour fusion.")
     with DatasetWriter(out, name=Path(out).name, label=label, width=width, height=height,
-                       base_url=base_url, source="synthetic", force=force,
+                       base_url=base_url, source=DEMO_SOURCE, force=force,
                        summary=summary, pixel_size_mm=DEMO_PIXEL_MM,
                        presets=demo_presets(width, height)) as ds:
         add_ptm_layer(ds, ptm, layer_id="ptm", label="Relief tablet (PTM LRGB)")
