@@ -81,8 +81,8 @@ class _UnitBands:
         self.stack = stack
         self.shape = stack.shape
 
-    def __getitem__(self, key: object) -> F32:
-        out: F32 = self.stack[key].astype(np.float32) / np.float32(255)  # type: ignore[index]
+    def __getitem__(self, key: tuple[slice, slice]) -> F32:
+        out: F32 = self.stack[key].astype(np.float32) / np.float32(255)
         return out
 
 
