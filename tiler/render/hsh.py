@@ -8,7 +8,7 @@ pixel's normal).
 from __future__ import annotations
 
 import math
-from collections.abc import Mapping
+from collections.abc import Callable, Mapping
 from typing import Any
 
 import numpy as np
@@ -109,9 +109,14 @@ def hsh_normals(coeffs: npt.ArrayLike) -> F32:
     total = np.sum(a, axis=-2, dtype=np.float32)  # r + g + b is linear in the coefficients
     weights = np.stack([hsh_weights(float(lu), float(lv), terms)
                         for lu, lv, _ in NORMAL_LIGHTS], axis=0)  # (3 lights, K)
-    intensities = np.einsum("...k,ik->...i", total, weights).astype(np.float32)
+    return normals_from_relights(np.einsum("...k,ik->...i", total, weights).astype(np.float32))
+
+
+def normals_from_relights(intensities: npt.ArrayLike) -> F32:
+    """``n = g/‖g‖``, ``g = M⁻¹·I``, from the ``(..., 3)`` brightness ``I_i`` of a pixel relit
+    under each of :data:`NORMAL_LIGHTS` (``M`` their rows); ``(0, 0, 1)`` where ``‖g‖ < 1e-6``."""
     m_inv = np.linalg.inv(NORMAL_LIGHTS.astype(np.float64)).astype(np.float32)
-    g = np.einsum("ij,...j->...i", m_inv, intensities).astype(np.float32)
+    g = np.einsum("ij,...j->...i", m_inv, np.asarray(intensities, np.float32)).astype(np.float32)
     length = np.sqrt(dot3(g, g))[..., None]
     n = g / np.where(length > 0, length, np.float32(1))
     out: F32 = np.where(length >= np.float32(1e-6), n,
@@ -137,6 +142,20 @@ def hsh_surface(layer: Mapping[str, Any], channels: Mapping[str, F32]) -> Surfac
     def color(light: Light) -> F32:
         return hsh_color(a, hsh_weights(light.lu, light.lv, terms), light.intensity)
 
+    albedo = f32(np.sum(a * hsh_basis(n[..., 0], n[..., 1], terms)[..., None, :], axis=-1,
+                        dtype=np.float32))
+    return Surface(color=color, normal=n, albedo=albedo, special=hsh_special_modes(color, n))
+
+
+def hsh_special_modes(color: Callable[[Light], F32], n: F32
+                      ) -> dict[str, Callable[[Light, Params], F32]]:
+    """HSH's own ``specular`` and ``unsharpCoefficients`` for a colour function and normals.
+
+    Shared by every layer whose colour is linear in its coefficients (HSH, the PCA bases):
+    ``c·specKd + mean(c)·specKs·4·s`` with ``s = clamp01(n·h)^(specExponent/5)``, and the
+    unsharp mask of the colour (filtering the coefficients then relighting is the same).
+    """
+
     def specular(light: Light, p: Params) -> F32:
         s = np.power(clamp01(dot3(n, light.h)), np.float32(p["specExponent"] / 5.0))[..., None]
         c = color(light)
@@ -147,7 +166,4 @@ def hsh_surface(layer: Mapping[str, Any], channels: Mapping[str, F32]) -> Surfac
         c = color(light)
         return unsharp(c, f3(c), p["umGain"])
 
-    albedo = f32(np.sum(a * hsh_basis(n[..., 0], n[..., 1], terms)[..., None, :], axis=-1,
-                        dtype=np.float32))
-    return Surface(color=color, normal=n, albedo=albedo,
-                   special={"specular": specular, "unsharpCoefficients": unsharp_coefficients})
+    return {"specular": specular, "unsharpCoefficients": unsharp_coefficients}

@@ -17,9 +17,8 @@ import numpy.typing as npt
 
 from lanterna.tiler.formats.pca_model import PcaBasis
 
-from .filters import f3, unsharp
-from .hsh import NORMAL_LIGHTS
-from .shading import F32, Light, Params, Surface, clamp01, dot3, f32, mean_rgb
+from .hsh import NORMAL_LIGHTS, hsh_special_modes, normals_from_relights
+from .shading import F32, Light, Surface, dot3, f32
 
 #: Smallest Lambertian denominator ``Σ_i l_i·n`` of the albedo (grazing normals).
 MIN_ALBEDO_COSINE = 0.1
@@ -47,14 +46,8 @@ def pca_normals(relit: F32) -> F32:
     ``I_i = r + g + b`` of the ``i``-th relight, ``g = M⁻¹·I`` (``M`` the rows ``l_i``),
     ``n = g/‖g‖``, ``(0, 0, 1)`` where ``‖g‖ < 1e-6`` (as HSH's).
     """
-    intensities = np.moveaxis(f32(np.sum(relit, axis=-1, dtype=np.float32)), 0, -1)
-    m_inv = np.linalg.inv(NORMAL_LIGHTS.astype(np.float64)).astype(np.float32)
-    g = np.einsum("ij,...j->...i", m_inv, intensities).astype(np.float32)
-    length = np.sqrt(dot3(g, g))[..., None]
-    n = g / np.where(length > 0, length, np.float32(1))
-    out: F32 = np.where(length >= np.float32(1e-6), n,
-                        np.array([0, 0, 1], np.float32)).astype(np.float32)
-    return out
+    return normals_from_relights(np.moveaxis(f32(np.sum(relit, axis=-1, dtype=np.float32)),
+                                             0, -1))
 
 
 def pca_albedo(relit: F32, n: F32) -> F32:
@@ -75,15 +68,5 @@ def pca_surface(layer: Mapping[str, Any], channels: Mapping[str, F32]) -> Surfac
     def color(light: Light) -> F32:
         return pca_color(r, basis.weights(light.lu, light.lv), light.intensity)
 
-    def specular(light: Light, p: Params) -> F32:
-        s = np.power(clamp01(dot3(n, light.h)), np.float32(p["specExponent"] / 5.0))[..., None]
-        c = color(light)
-        kd, ks = np.float32(p["specKd"]), np.float32(p["specKs"])
-        return (c * kd + mean_rgb(c)[..., None] * ks * np.float32(4) * s).astype(np.float32)
-
-    def unsharp_coefficients(light: Light, p: Params) -> F32:
-        c = color(light)
-        return unsharp(c, f3(c), p["umGain"])
-
     return Surface(color=color, normal=n, albedo=pca_albedo(relit, n),
-                   special={"specular": specular, "unsharpCoefficients": unsharp_coefficients})
+                   special=hsh_special_modes(color, n))
