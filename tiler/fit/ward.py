@@ -29,7 +29,7 @@ import numpy.typing as npt
 from lanterna.tiler.inputs.stack import StackReader
 
 from .ward_kernel import ward_band_compiled
-from .ward_solve import MIN_COSI, SATURATED, solve_ward_band
+from .ward_solve import MIN_COSI, SATURATED, solve_ward_band, ward_terms
 
 __all__ = ["ALPHA_STEPS", "GLOSS_LIMITS", "MIN_COSI", "SATURATED", "Ward", "alpha_grid", "fit_ward",
            "predict_ward", "quantize_ward", "render_ward", "ward_basis"]
@@ -58,16 +58,9 @@ def ward_basis(normals: npt.NDArray[np.floating], lights: npt.NDArray[np.floatin
     ``normals`` (..., 3) unit, ``lights`` (N, 3) unit, ``alpha`` scalar or broadcastable to
     ``normals.shape[:-1]``; results have shape ``(N, ...)``.
     """
-    nrm = np.asarray(normals, np.float64)
-    lf = np.asarray(lights, np.float64)
-    half = lf + np.array([0.0, 0.0, 1.0])
-    half /= np.maximum(np.linalg.norm(half, axis=1, keepdims=True), 1e-12)
-    cosi = np.maximum(np.einsum("nc,...c->n...", lf, nrm), 0.0)
-    cosr = np.maximum(nrm[..., 2], 1e-4)
-    nh = np.maximum(np.einsum("nc,...c->n...", half, nrm), 1e-4)
-    tan2 = (1.0 - nh * nh) / (nh * nh)
+    cosi, tan2, root = ward_terms(np.asarray(normals, np.float64), np.asarray(lights, np.float64))
     a2 = np.asarray(alpha, np.float64) ** 2
-    ward = np.exp(-tan2 / a2) * np.sqrt(cosi / cosr) / (4.0 * a2)
+    ward = np.exp(-tan2 / a2) * root / (4.0 * a2)
     return cosi, ward
 
 
