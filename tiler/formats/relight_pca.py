@@ -50,13 +50,13 @@ def pca_nplanes(info: dict[str, Any], path: Path, colorspace: str) -> int:
             raise LanternaInputError(path, f"'yccplanes' must be [ny, nc, nc] with ny ≥ nc and "
                                      f"ny + 2·nc ≥ 1, got {list(ycc)}")
         n = int(ny + 2 * nc)
-        if "nplanes" in info and _as_int(info["nplanes"], "nplanes", path) != n:
+        if "nplanes" in info and as_int(info["nplanes"], "nplanes", path) != n:
             raise LanternaInputError(path, f"'nplanes' {info['nplanes']!r} disagrees with "
                                      f"'yccplanes' {list(ycc)} (ny + 2·nc = {n})")
     else:
         if "nplanes" not in info:
             raise LanternaInputError(path, f"{colorspace} needs 'nplanes'")
-        n = _as_int(info["nplanes"], "nplanes", path)
+        n = as_int(info["nplanes"], "nplanes", path)
     if not 1 <= n <= MAX_PCA_PLANES:
         raise LanternaInputError(path, f"'nplanes' must be 1 to {MAX_PCA_PLANES} for a PCA basis, "
                                  f"got {n}")
@@ -79,7 +79,7 @@ def read_pca_basis(info: dict[str, Any], path: Path, rtype: str, colorspace: str
         sigma = float(sigma)
         ndim = len(lights) // 3
     else:
-        resolution = _as_int(info.get("resolution"), "resolution", path)
+        resolution = as_int(info.get("resolution"), "resolution", path)
         top = math.isqrt(MAX_PCA_DIMENSIONS)
         if not 2 <= resolution <= top:
             raise LanternaInputError(path, f"bilinear needs 'resolution' 2 to {top}, got "
@@ -107,7 +107,8 @@ def pca_groups(planes: npt.NDArray[np.uint8], scale: list[float], bias: list[flo
     return groups
 
 
-def _as_int(value: Any, key: str = "nplanes", path: Path | None = None) -> int:
+def as_int(value: Any, key: str = "nplanes", path: Path | None = None) -> int:
+    """``value`` as an integer (or its decimal text), else a one-line error naming ``key``."""
     if isinstance(value, str) and value.strip().isdigit():
         value = int(value)
     if isinstance(value, bool) or not isinstance(value, int):

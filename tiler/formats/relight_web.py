@@ -41,8 +41,8 @@ from lanterna.tiler.limits import check_pixels, check_quantisation
 
 from .pca_model import PCA_TYPES
 from .planes import PlaneGroup, PlaneLayer
-from .relight_layouts import open_tiled_plane, tiled_plane_source
-from .relight_pca import pca_groups, pca_nplanes, read_pca_basis
+from .relight_layouts import open_rgb_plane, open_tiled_plane, tiled_plane_source, vips_reason
+from .relight_pca import as_int, pca_groups, pca_nplanes, read_pca_basis
 from .relight_ycc import ycc_as_rgb
 
 #: Relight's PTM term for each Lanterna PTM coefficient (``lu², lv², lu·lv, lu, lv, 1``).
@@ -134,15 +134,6 @@ def read_relight(folder: str | Path) -> PlaneLayer:
     return PlaneLayer("ptm", groups, colorspace, None, extra)
 
 
-def _int_field(info: dict[str, Any], key: str, path: Path) -> int:
-    value = info.get(key)
-    if isinstance(value, str) and value.strip().isdigit():
-        value = int(value)
-    if isinstance(value, bool) or not isinstance(value, int):
-        raise LanternaInputError(path, f"{key!r} must be an integer, got {value!r}")
-    return value
-
-
 def _check_info(info: dict[str, Any], path: Path) -> tuple[str, str, int, int, int]:
     rtype, colorspace = info.get("type"), info.get("colorspace")
     if rtype in _OTHER_TYPES:
@@ -157,12 +148,12 @@ def _check_info(info: dict[str, Any], path: Path) -> tuple[str, str, int, int, i
     if colorspace not in COLORSPACES[rtype]:
         raise LanternaInputError(path, f"{rtype} with colorspace {colorspace} is not supported; "
                                  f"{rtype} takes {' or '.join(COLORSPACES[rtype])}")
-    width, height = _int_field(info, "width", path), _int_field(info, "height", path)
+    width, height = (as_int(info.get(key), key, path) for key in ("width", "height"))
     if width <= 0 or height <= 0:
         raise LanternaInputError(path, f"image size must be positive, got {width}x{height}")
     if rtype in PCA_TYPES:
         return rtype, colorspace, width, height, pca_nplanes(info, path, colorspace)
-    nplanes = _int_field(info, "nplanes", path)
+    nplanes = as_int(info.get("nplanes"), "nplanes", path)
     allowed = NPLANES[(rtype, colorspace)]
     if nplanes not in allowed:
         raise LanternaInputError(path, f"{rtype} {colorspace} needs nplanes "
@@ -222,15 +213,10 @@ def _open_plane(folder: Path, index: int, ext: str, width: int, height: int,
         raise LanternaInputError(path, f"plane {index} is missing{hint}")
     else:
         # From a buffer, not a file name: libvips caches loads by name, so a plane rewritten in
-        # place would come back stale.
-        data = read_input(path, "a plane image")
-        try:
-            image = pyvips.Image.new_from_buffer(data, "", fail_on="warning")
-        except pyvips.Error as exc:
-            raise LanternaInputError(path, f"cannot decode plane ({_reason(exc)})") from None
-    bands, w, h, fmt = image.bands, image.width, image.height, image.format
-    if bands != 3 or fmt != "uchar":
-        raise LanternaInputError(path, f"plane has {bands} band(s) of {fmt}; expected 8-bit RGB")
+        # place would come back stale. open_rgb_plane checks 8-bit RGB, as the layouts check
+        # every tile.
+        image = open_rgb_plane(read_input(path, "a plane image"), path)
+    w, h = image.width, image.height
     if (w, h) != (width, height):
         raise LanternaInputError(path, f"plane is {w}x{h}, info.json says {width}x{height}")
     return path, image
@@ -241,15 +227,9 @@ def _decode_plane(path: Path, image: pyvips.Image) -> list[npt.NDArray[np.uint8]
     try:
         pixels = image.write_to_memory()
     except pyvips.Error as exc:
-        raise LanternaInputError(path, f"cannot decode plane ({_reason(exc)})") from None
+        raise LanternaInputError(path, f"cannot decode plane ({vips_reason(exc)})") from None
     rgb = np.frombuffer(pixels, dtype=np.uint8).reshape(image.height, image.width, 3)
     return [rgb[..., c] for c in range(3)]
-
-
-def _reason(exc: pyvips.Error) -> str:
-    """libvips' own reason: the first line of its detail (the message is often generic)."""
-    detail = [line for line in str(exc.detail or "").splitlines() if line.strip()]
-    return " ".join((detail[0] if detail else str(exc.message or exc)).split())[:80]
 
 
 def _stack(planes: npt.NDArray[np.uint8], idx: list[int]) -> npt.NDArray[np.uint8]:
