@@ -26,6 +26,7 @@ from lanterna.tiler.formats.pca_model import (
     PCA_TYPES,
     YCC_TO_RGB,
     bilinear_weights,
+    rbf_direction_weights,
 )
 
 F64 = npt.NDArray[np.float64]
@@ -116,11 +117,7 @@ def resample_matrix(lights: npt.ArrayLike, resolution: int, sigma: float = DEFAU
             gx, gy = (ox - oy) / 2.0, (ox + oy) / 2.0
             g = np.array([gx, gy, max(0.0, 1.0 - abs(gx) - abs(gy))])
             g /= np.linalg.norm(g)
-            d2 = np.sum((dirs - g) ** 2, axis=1)
-            w = np.exp(-(d2 - d2.min()) / sigma ** 2)
-            w /= w.sum()
-            w = np.where(w > RESAMPLE_DROP, w, 0.0)
-            b[x + y * res] = w / w.sum()
+            b[x + y * res] = rbf_direction_weights(dirs, sigma, g, RESAMPLE_DROP)
     a = np.stack([bilinear_weights(res, float(lx), float(ly)) for lx, ly, _ in dirs])
     inv = np.linalg.inv(a.T @ a + regularization * np.eye(res * res))
     out: F64 = b + inv @ (a.T @ (np.eye(len(dirs)) - a @ b))

@@ -58,14 +58,22 @@ def rbf_weights(lights: npt.ArrayLike, sigma: float, lu: float, lv: float) -> F6
     """Relight's RBF sample weights ``(D,)`` for the light projected at ``(lu, lv)``.
 
     ``g_d = exp(−‖l − l_d‖²/σ²)``, ``w = g/Σg``; weights ``≤`` :data:`RBF_DROP` become 0 and the
-    rest are renormalised to sum 1. (The exponent is shifted by its minimum before ``exp``, which
-    leaves the normalised weights unchanged and keeps them finite for any light.)
+    rest are renormalised to sum 1 (:func:`rbf_direction_weights` of :func:`light_direction`).
+    """
+    return rbf_direction_weights(lights, sigma, light_direction(lu, lv))
+
+
+def rbf_direction_weights(lights: npt.ArrayLike, sigma: float, direction: npt.ArrayLike,
+                          drop: float = RBF_DROP) -> F64:
+    """The RBF weights ``(D,)`` of a unit ``direction``; weights ``≤ drop`` are dropped (the
+    fit's grid resampling has its own ``drop``). The exponent is shifted by its minimum before
+    ``exp``, which leaves the normalised weights unchanged and keeps them finite for any light.
     """
     dirs = np.asarray(lights, np.float64).reshape(-1, 3)
-    d2 = np.sum((dirs - light_direction(lu, lv)) ** 2, axis=1)
+    d2 = np.sum((dirs - np.asarray(direction, np.float64)) ** 2, axis=1)
     g = np.exp(-(d2 - d2.min()) / (float(sigma) ** 2))
     w = g / g.sum()
-    keep = w > RBF_DROP
+    keep = w > drop
     if not keep.any():  # cannot happen for D < 1000; keep the nearest light
         keep = w == w.max()
     w = np.where(keep, w, 0.0)
