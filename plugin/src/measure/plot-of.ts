@@ -4,7 +4,7 @@
  * HSH or PCA (rbf, bilinear) pixel, the displayed colour of an image pixel (docs/rendering.md,
  * "Measurement mode").
  */
-import { svbrdfMapIndices, type RelightLayer } from '../iiif/relight-service';
+import { svbrdfMapIndices, type LayerType, type RelightLayer } from '../iiif/relight-service';
 import { brdfSlice, linearToSrgb, SLICE_SIZE, srgbToLinear } from '../math/brdf-slice';
 import type { Light } from '../math/light';
 import { pcaWeights, reconstruct, type PcaBasis } from '../math/pca-weights';
@@ -108,25 +108,38 @@ function diskWeights(basis: PcaBasis, lu: number, lv: number): Float64Array {
   return w;
 }
 
+/** A pixel's colour under a light of the reflectance disk (the colour mode's unclamped `c`). */
+type DiskColor = (layer: RelightLayer, values: Readonly<Record<string, number>>, intensity: number) =>
+  (lu: number, lv: number) => Rgb;
+
 /** The PCA colour mode's unclamped `c` (shader `lt_color`) from the pixel's channels `P0…`. */
-function pcaColor(values: Readonly<Record<string, number>>, basis: PcaBasis, intensity: number):
-  (lu: number, lv: number) => Rgb {
+const pcaColor: DiskColor = (layer, values, intensity) => {
+  const basis = layer.pca;
+  if (!basis) {
+    throw new Error(`a ${layer.layerType} layer without its basis`); // parsePcaBlock always sets it
+  }
   const r = Array.from({ length: basis.nplanes }, (_, q) => values[`P${q}`] ?? 0);
   return (lu, lv) => {
     const c = reconstruct(r, diskWeights(basis, lu, lv));
     return [c[0] * intensity, c[1] * intensity, c[2] * intensity];
   };
-}
+};
+
+/** The layer types a measurement plots as a reflectance disk, and their colour under a light. */
+const DISK_COLORS: Partial<Record<LayerType, DiskColor>> = {
+  ptm: (layer, values, intensity) => (lu, lv) => ptmColor(values, layer.colorspace, lu, lv, intensity),
+  hsh: (layer, values, intensity) => (lu, lv) => hshColor(values, layer.terms, lu, lv, intensity),
+  rbf: pcaColor,
+  bilinear: pcaColor,
+};
 
 /** The plot and material of a pixel's values (pure; `intensity` is `lightIntensity`). */
 export function plotOf(layer: RelightLayer, values: Readonly<Record<string, number>>, intensity: number):
   { kind: MeasurementKind; plot: MeasurementPlot; material: Material | null } {
-  if (layer.layerType === 'ptm' || layer.layerType === 'hsh' || layer.pca) {
-    const color = layer.pca ? pcaColor(values, layer.pca, intensity) : layer.layerType === 'ptm'
-      ? (lu: number, lv: number) => ptmColor(values, layer.colorspace, lu, lv, intensity)
-      : (lu: number, lv: number) => hshColor(values, layer.terms, lu, lv, intensity);
+  const diskColor = DISK_COLORS[layer.layerType];
+  if (diskColor) {
     return { kind: 'reflectance-disk', material: null,
-      plot: { width: DISK_SIZE, height: DISK_SIZE, data: reflectanceDisk(DISK_SIZE, color) } };
+      plot: { width: DISK_SIZE, height: DISK_SIZE, data: reflectanceDisk(DISK_SIZE, diskColor(layer, values, intensity)) } };
   }
   const material = layer.layerType === 'svbrdf' ? materialOf(layer, values) : null;
   if (material) {
