@@ -208,11 +208,3 @@ def plane_channel_names(nplanes: int) -> list[list[str]]:
     for g in range(0, nplanes, 3):
         groups.append([f"P{q}" if q < nplanes else f"X{q}" for q in range(g, g + 3)])
     return groups
-
-
-def reconstruct(coefficients: npt.ArrayLike, weights: npt.ArrayLike) -> F64:
-    """Colour ``(..., 3)`` of coefficients ``(..., N)`` under RGB plane weights ``(N + 1, 3)``."""
-    r = np.asarray(coefficients, np.float64)
-    w = np.asarray(weights, np.float64)
-    out: F64 = w[0] + np.einsum("...q,qk->...k", r, w[1:])
-    return out
