@@ -13,8 +13,9 @@ of bands 0–2 without the Condon–Shortley phase, for the light ``l = (lu, lv,
 A layer of order 1 has the first 4 terms (``nplanes`` 12), of order 2 all 9 (``nplanes`` 27):
 Relight's builder fits only those two (``RtiBuilder::pickBaseHSH`` asserts 12 or 27 planes), in
 ``rgb`` (or ``ycc``) only — it refuses ``mrgb``/``mycc`` for sh, so there is no PCA sh.
-OpenLIME 1.2.6's ``SH.lightWeights`` orders and signs terms 1–8 differently; Relight fits the
-coefficients, so its basis is the one that relights them as they were made.
+OpenLIME 1.2.6's ``SH.lightWeights`` differs (band 1 ``x, z, y``, terms 5 and 7 swapped, term 6
+doubled, term 8 negated); Relight's builder fits the coefficients against ``lightWeightsSh``, so
+that is the basis that relights them as they were made.
 
 The formulas are normative in docs/rendering.md (``sh``); the plugin's ``math/sh-basis.ts`` is
 the same in TypeScript and GLSL. This is not an HSH (whose terms hold ``√(cos θ − cos² θ)``) nor a

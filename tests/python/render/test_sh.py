@@ -10,6 +10,7 @@ import pytest
 
 from lanterna.tiler.formats.sh_model import sh_basis, sh_weights
 from lanterna.tiler.render import albedo, applicable_modes, normals, render
+from tests.python.render.test_pca import documented_modes
 
 F32 = npt.NDArray[np.float32]
 
@@ -83,5 +84,6 @@ def test_a_lambertian_field_gives_back_its_normals_albedo_and_shading(terms: int
         np.testing.assert_allclose(got, np.clip(rho * shade * 0.8, 0, 1), atol=1e-5)
 
 
-def test_sh_has_hsh_s_modes() -> None:
+def test_sh_has_hsh_s_modes_as_the_docs_table_says() -> None:
     assert applicable_modes({"layerType": "sh"}) == applicable_modes({"layerType": "hsh"})
+    assert applicable_modes({"layerType": "sh"}) == documented_modes("sh")
