@@ -2,8 +2,8 @@
 
 :func:`fetch` returns a response's bytes, refusing before reading when ``Content-Length`` is
 over the bound and stopping one byte past it otherwise; each connection and read waits at most
-:data:`TIMEOUT_S`. Only ``http://`` and ``https://`` URLs are fetched (redirects too: urllib
-follows no redirect to another scheme but ftp, which :func:`fetch` refuses as well).
+:data:`TIMEOUT_S`. Only ``http://`` and ``https://`` URLs are fetched, redirects included (a
+redirect elsewhere, which urllib would follow to ``ftp://``, is an error instead).
 """
 
 from __future__ import annotations
@@ -11,12 +11,26 @@ from __future__ import annotations
 import http.client
 import urllib.error
 import urllib.request
+from typing import Any
 
 from lanterna.errors import LanternaInputError
 
 #: Seconds each connection attempt and each read may wait.
 TIMEOUT_S = 30.0
 USER_AGENT = "lanterna-import"
+
+
+class _HttpOnly(urllib.request.HTTPRedirectHandler):
+    """Follow redirects to http(s) URLs only (None: urllib raises the 3xx as an HTTPError)."""
+
+    def redirect_request(self, req: urllib.request.Request, fp: Any, code: int, msg: str,
+                         headers: Any, newurl: str) -> urllib.request.Request | None:
+        if not is_url(newurl):
+            return None
+        return super().redirect_request(req, fp, code, msg, headers, newurl)
+
+
+_OPENER = urllib.request.build_opener(_HttpOnly)
 
 
 def is_url(text: object) -> bool:
@@ -31,16 +45,14 @@ def fetch(url: str, what: str, *, max_bytes: int, accept: str = "*/*",
     Raises
     ------
     LanternaInputError
-        Not an http(s) URL, an HTTP error status, no connection, no answer within ``timeout``,
-        a redirect elsewhere than http(s), or a body over ``max_bytes``.
+        Not an http(s) URL, an HTTP error status (a redirect elsewhere than http(s) is its 3xx),
+        no connection, no answer within ``timeout``, or a body over ``max_bytes``.
     """
     if not is_url(url):
         raise LanternaInputError(url, f"expected an http:// or https:// URL of {what}")
     request = urllib.request.Request(url, headers={"Accept": accept, "User-Agent": USER_AGENT})
     try:
-        with urllib.request.urlopen(request, timeout=timeout) as response:  # noqa: S310
-            if not is_url(response.geturl()):
-                raise LanternaInputError(url, f"redirected to {response.geturl()}, not http(s)")
+        with _OPENER.open(request, timeout=timeout) as response:
             length = response.headers.get("Content-Length", "")
             if length.isdigit() and int(length) > max_bytes:
                 raise LanternaInputError(url, f"is {int(length):,} bytes; at most {max_bytes:,} "

@@ -7,7 +7,9 @@ from __future__ import annotations
 import json
 import os
 import shutil
+import threading
 from collections.abc import Iterator
+from http.server import BaseHTTPRequestHandler, ThreadingHTTPServer
 from pathlib import Path
 from typing import Any
 
@@ -233,4 +235,30 @@ def test_a_pair_of_different_sizes(tmp_path: Path, capsys: pytest.CaptureFixture
                  str(tmp_path / "out" / "x")]) == 2
     err = capsys.readouterr().err.strip()
     assert "\n" not in err and "a.png: map kd is 320x200, map normals is 320x240" in err, err
+    assert not (tmp_path / "out").exists()
+
+
+class _Redirect(BaseHTTPRequestHandler):
+    def do_GET(self) -> None:  # noqa: N802 (http.server's name)
+        self.send_response(302)
+        self.send_header("Location", "ftp://127.0.0.1:1/manifest.json")
+        self.end_headers()
+
+    def log_message(self, format: str, *args: Any) -> None:
+        pass
+
+
+def test_a_redirect_to_another_scheme_is_refused(tmp_path: Path,
+                                                 capsys: pytest.CaptureFixture[str]) -> None:
+    server = ThreadingHTTPServer(("127.0.0.1", 0), _Redirect)
+    thread = threading.Thread(target=server.serve_forever, daemon=True)
+    thread.start()
+    try:
+        url = f"http://127.0.0.1:{server.server_address[1]}/manifest.json"
+        assert main(["import", url, "-o", str(tmp_path / "out" / "x")]) == 2
+    finally:
+        server.shutdown()
+        server.server_close()
+    err = capsys.readouterr().err.strip()
+    assert "\n" not in err and f"{url}: HTTP 302" in err, err
     assert not (tmp_path / "out").exists()
