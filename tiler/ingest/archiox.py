@@ -180,7 +180,8 @@ def plan_archiox(source: str | Path, *, layer_id: str | None = None,
         if info.fmt == "jpg":
             lossy.add(MAP_TYPES[map_type])
     title = text_of(doc.get("label"))
-    lid = check_identifier(layer_id or layer_id_from(title or "lighting_maps"), "layer id")
+    lid = check_identifier(layer_id or layer_id_from((title or "lighting_maps")[:64]),
+                           "layer id")
     label = f"{title or lid} (albedo + normal map)"
     share = {name: f"{source}#{refs[t].path}" for t, name in MAP_TYPES.items()}
 

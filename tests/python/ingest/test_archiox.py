@@ -262,3 +262,13 @@ def test_a_redirect_to_another_scheme_is_refused(tmp_path: Path,
     err = capsys.readouterr().err.strip()
     assert "\n" not in err and f"{url}: HTTP 302" in err, err
     assert not (tmp_path / "out").exists()
+
+
+def test_a_long_label_makes_a_valid_layer_id(site: tuple[Site, StaticServer],
+                                             tmp_path: Path) -> None:
+    s, _ = site
+    s.write({**s.read(), "label": {"none": ["Tablet, obverse; " * 20]}})
+    out = tmp_path / "out" / "long"
+    assert main(["import", f"{s.url}/manifest.json", "-o", str(out)]) == 0
+    layer, _ = stored(out)
+    assert layer["id"].startswith("Tablet_obverse_Tablet") and len(layer["id"]) <= 64
