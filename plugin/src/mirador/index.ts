@@ -4,8 +4,9 @@
  */
 import type { MiradorPlugin } from './types';
 import { uiPlugins } from './ui/index';
+import { viewerPlugin } from './viewer-plugin';
 
-export const lanternaMiradorPlugins: MiradorPlugin[] = [...uiPlugins];
+export const lanternaMiradorPlugins: MiradorPlugin[] = [viewerPlugin, ...uiPlugins];
 
 export { getWindowViewer, setWindowViewer, watchWindowViewer } from './registry';
 export type * from './types';
