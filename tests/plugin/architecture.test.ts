@@ -45,12 +45,17 @@ const ALLOWED: Readonly<Record<string, readonly string[]>> = {
     'panel', 'viewer', 'presets', 'state', 'measure', 'tools', 'annotations', 'annotate'],
   demo: ['index'],
   simple: ['index'],
+  // The Mirador 4 plugins (a separate entry, `@lanterna/plugin/mirador`): our viewer and its API in a Mirador window.
+  mirador: ['errors', 'math', 'iiif', 'render', 'lens', 'ui', 'overlay', 'api', 'panel', 'viewer', 'presets', 'state',
+    'annotations', 'index'],
 };
 
 /** The packages a part may import. */
 const PACKAGES: Readonly<Record<string, readonly string[]>> = {
   openseadragon: ['tiles', 'lens', 'overlay', 'ui', 'drawer', 'api', 'viewer', 'measure', 'tools'],
   'twgl.js': ['gl', 'layers', 'drawer'],
+  mirador: ['mirador'],
+  react: ['mirador'],
 };
 
 /** Parts that are pure: no DOM, no GL (they run, and are tested, in Node). */

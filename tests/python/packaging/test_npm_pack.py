@@ -155,7 +155,7 @@ def tar_manifest(tarball: Path) -> tuple[list[str], dict[str, Any]]:
 
 def test_tarball_holds_only_the_library_and_its_metadata(tarball: Path) -> None:
     files, package = tar_manifest(tarball)
-    allowed = {"package.json", "README.md", "LICENSE"}
+    allowed = {"package.json", "README.md", "LICENSE", "dist/mirador/lanterna-mirador.js"}
     strays = [f for f in files if f not in allowed and not f.startswith("dist/lib/")]
     assert strays == []
     assert {"package.json", "README.md", "dist/lib/lanterna.js"} <= set(files)
@@ -165,6 +165,8 @@ def test_tarball_holds_only_the_library_and_its_metadata(tarball: Path) -> None:
     for target in (package["types"], entry["types"], entry["import"], package["main"]):
         assert target.removeprefix("./") in files, target
     assert package["types"] == entry["types"]
+    m = package["exports"]["./mirador"]  # the Mirador entry and ready bundle (docs/mirador.md)
+    assert {m["types"][2:], m["import"][2:], "dist/mirador/lanterna-mirador.js"} <= set(files)
 
 
 def test_types_check_in_a_strict_consumer(project: Path) -> None:
