@@ -7,6 +7,7 @@
  */
 import { createElement, useEffect, useRef, useState, type ReactElement } from 'react';
 import type { LanternaViewer } from '../../api/viewer-api';
+import type { PanelSection } from '../../panel/panel-dom';
 import { watchWindowViewer } from '../registry';
 import type { MiradorPlugin, MiradorState, WrapProps } from '../types';
 import { mountControlsPanel } from './controls-panel';
@@ -42,15 +43,15 @@ function LanternaPanel({ windowId, manifestUrl }: PanelProps): ReactElement {
     }
     ensurePanelStyle(element.ownerDocument);
     let live = true;
-    let destroy = (): void => undefined;
+    let panel: PanelSection | null = null;
     viewer.ready.then(() => {
       if (live) {
-        destroy = mountControlsPanel(viewer, element, { manifestUrl }).destroy;
+        panel = mountControlsPanel(viewer, element, { manifestUrl });
       }
     }, () => undefined); // the viewer shows its own error
     return () => {
       live = false;
-      destroy();
+      panel?.destroy();
     };
   }, [viewer, manifestUrl]);
   return createElement('div', { className: 'lanterna-mirador-content' },

@@ -4,7 +4,7 @@
  * selectors of the state they read. All are in Mirador 4.0–4.2's `src/index.js` exports.
  */
 import * as mirador from 'mirador';
-import type { ComponentType } from 'react';
+import type { ComponentType, ReactNode } from 'react';
 import type { MiradorState } from '../types';
 
 /** A companion window (`companionWindows[id]`): the slice we read. */
@@ -25,11 +25,11 @@ export interface AnnotationPageState {
 interface MiradorParts {
   /** Mirador's companion-window frame (title bar, close, move and resize), connected to its store. */
   readonly ConnectedCompanionWindow: ComponentType<{
-    id: string; windowId: string; title: string; paperClassName?: string; children?: unknown;
+    id: string; windowId: string; title: string; paperClassName?: string; children?: ReactNode;
   }>;
   /** An icon button with a tooltip, as in Mirador's own top bars. */
   readonly MiradorMenuButton: ComponentType<{
-    'aria-label': string; onClick: () => void; selected?: boolean; className?: string; children: unknown;
+    'aria-label': string; onClick: () => void; selected?: boolean; className?: string; children?: ReactNode;
   }>;
   readonly addCompanionWindow: (windowId: string, payload: { content: string; position: string }) => unknown;
   readonly removeCompanionWindow: (windowId: string, id: string) => unknown;
