@@ -7,7 +7,9 @@ an ``xywh`` target, contract §2; and a plain note on a region), written here. T
 "Lanterna controls" button opens the companion window with our panel; its mode menu and light
 buttons change our pixels (the light's frame matches the numpy relight within 2/255); selecting an
 annotation in Mirador's own annotation panel fits our view to its region (``getImageRegion``),
-switching to the overlay's layer and showing the overlays. A plain IIIF manifest gets no button.
+switching to the overlay's layer and showing the overlays; a patch of the layer's W3C page is
+focused with the render state it was drawn under, and pointing at it in Mirador's list outlines it.
+A plain IIIF manifest gets no button.
 """
 
 from __future__ import annotations
@@ -21,6 +23,7 @@ from typing import Any
 import numpy as np
 import numpy.typing as npt
 import pytest
+import pyvips
 
 from lanterna.tiler.dataset.layers import add_ptm_layer
 from lanterna.tiler.dataset.writer import DatasetWriter
@@ -39,6 +42,12 @@ OVERLAY_BOX = (120, 80, 300, 200)
 NOTE_BOX = (600, 450, 200, 150)
 OVERLAY_ID = f"{CANVAS}/overlays/rgb/level/0"
 NOTE_ID = f"{CANVAS}/notes/1"
+#: A patch of layer lrgb (its W3C page, referenced by the canvas) and the state it was drawn under.
+PATCH = "0_500_100_200_120_0_mark"
+PATCH_BOX = (500, 100, 200, 120)
+PATCH_ID = f"{BASE}/annotations/lrgb/{PATCH}.json"
+PATCH_STATE = {"layer": "lrgb", "mode": "specular", "params": {"specExponent": 40, "specKs": 0.6},
+               "light": [0.5, -0.25]}
 BUTTON = 'button[aria-label="Lanterna controls"]'
 PANEL = ".lanterna-mirador-panel"
 
@@ -113,6 +122,31 @@ def notes_page() -> dict[str, Any]:
     return {"id": f"{CANVAS}/notes", "type": "AnnotationPage", "items": [overlay, note]}
 
 
+def write_patch_page(version: Path) -> dict[str, Any]:
+    """Layer lrgb's W3C annotation page with one patch (docs/annotations.md); its reference."""
+    folder = version / "annotations" / "lrgb"
+    folder.mkdir(parents=True)
+    x, y, w, h = PATCH_BOX
+    pyvips.Image.black(w, h, bands=4).write_to_file(str(folder / f"{PATCH}.png"))
+    patch = {
+        "id": PATCH_ID, "type": "Annotation", "motivation": ["highlighting", "commenting"],
+        "target": {"type": "SpecificResource", "source": {"id": CANVAS, "type": "Canvas"},
+                   "selector": {"type": "FragmentSelector", "value": f"xywh={x},{y},{w},{h}"}},
+        "body": [
+            {"id": f"{BASE}/annotations/lrgb/{PATCH}.png", "type": "Image", "format": "image/png",
+             "width": w, "height": h,
+             "service": [{"id": f"{PATCH_ID}#lanterna", "type": "LanternaPatch",
+                          "profile": "urn:lanterna:patch:1", "layer": "lrgb", "level": 0,
+                          "order": 0, "x": x, "y": y, "w": w, "h": h, "state": PATCH_STATE}]},
+            {"type": "TextualBody", "value": "Tool mark", "format": "text/plain",
+             "purpose": "commenting"}]}
+    page_id = f"{BASE}/annotations/lrgb.json"
+    (version / "annotations" / "lrgb.json").write_text(json.dumps({
+        "@context": "http://iiif.io/api/presentation/3/context.json", "id": page_id,
+        "type": "AnnotationPage", "items": [patch]}))
+    return {"id": page_id, "type": "AnnotationPage"}
+
+
 def write_plain_manifest(path: Path, base: str, service: str) -> None:
     """A plain IIIF Presentation 3 manifest: one canvas painted by an image with a plain service."""
     path.parent.mkdir(parents=True, exist_ok=True)
@@ -135,11 +169,13 @@ def site(tmp_path_factory: pytest.TempPathFactory) -> Iterator[Site]:
         add_ptm_layer(ds, smooth_random_ptm("lrgb", seed=7), layer_id="lrgb", label="LRGB")
         add_ptm_layer(ds, smooth_random_ptm("rgb", seed=8), layer_id="rgb", label="RGB")
         blocks = {layer["id"]: ds.layer_service(layer) for layer in ds.layers}
-    manifest_path = (root / "obj").resolve() / "manifest.json"
+    version = (root / "obj").resolve()
+    manifest_path = version / "manifest.json"
     manifest = json.loads(manifest_path.read_text())
     canvas = manifest["items"][0]
     assert canvas["id"] == CANVAS and (canvas["width"], canvas["height"]) == (W, H)
-    canvas["annotations"] = [*canvas.get("annotations", []), notes_page()]
+    pages = [notes_page(), write_patch_page(version)]
+    canvas["annotations"] = [*canvas.get("annotations", []), *pages]
     manifest_path.write_text(json.dumps(manifest))
     server = LiveServer(root)
     try:
@@ -159,7 +195,7 @@ def served(url: str, site: Site) -> str:
 @pytest.fixture(scope="module")
 def run(site: Site, tmp_path_factory: pytest.TempPathFactory) -> list[Any]:
     """One Mirador window on the dataset: the controls opened and used, two annotations selected."""
-    overlay, note = served(OVERLAY_ID, site), served(NOTE_ID, site)
+    overlay, note, patch = (served(i, site) for i in (OVERLAY_ID, NOTE_ID, PATCH_ID))
     steps: list[dict[str, Any]] = [
         {"waitFor": "() => window.miradorInstance && window.Mirador?.lanternaWindowViewer"},
         HELPERS,
@@ -197,7 +233,7 @@ def run(site: Site, tmp_path_factory: pytest.TempPathFactory) -> list[Any]:
         # 16: Mirador's annotation panel, opened from its side bar, lists both annotations
         {"click": 'button[aria-label="Toggle sidebar"]'},
         {"click": '[aria-label="Annotations"]'},
-        {"waitFor": "() => document.querySelectorAll('li[annotationid]').length === 2"},
+        {"waitFor": "() => document.querySelectorAll('li[annotationid]').length === 3"},
         evaluate("() => [...document.querySelectorAll('li[annotationid]')].map((li) => "
                  "[li.getAttribute('annotationid'), li.textContent.trim()])"),
         # 20: select the overlay level, then the note
@@ -205,6 +241,13 @@ def run(site: Site, tmp_path_factory: pytest.TempPathFactory) -> list[Any]:
         evaluate("() => t.settled()"),
         {"click": f'li[annotationid="{note}"]'},
         evaluate("() => t.settled()"),
+        # 24: pointing at the patch outlines it; selecting it focuses it
+        {"hover": f'li[annotationid="{patch}"]'},
+        evaluate("() => document.querySelectorAll('.lanterna-annotation-highlight').length"),
+        {"click": f'li[annotationid="{patch}"]'},
+        evaluate("""async () => ({ ...await t.settled(), mode: t.lv().getRenderMode(),
+                                   light: t.lv().getLight(),
+                                   params: t.lv().getRenderParams() })"""),
     ]
     folder = tmp_path_factory.mktemp("mirador-ui-run")
     result = run_page(f"{site.url}?manifest={site.manifest}", steps, folder, PAGE, routes=(),
@@ -263,7 +306,8 @@ def test_the_light_buttons_relight_our_view(site: Site, run: list[Any]) -> None:
 
 def test_miradors_panel_lists_our_annotations(site: Site, run: list[Any]) -> None:
     assert dict(run[19]) == {served(OVERLAY_ID, site): "Underdrawing",
-                             served(NOTE_ID, site): "A chip in the rim"}
+                             served(NOTE_ID, site): "A chip in the rim",
+                             served(PATCH_ID, site): "Tool mark"}
 
 
 def fits(region: list[float], box: tuple[int, int, int, int]) -> None:
@@ -306,3 +350,13 @@ def test_no_lanterna_viewer_no_button(site: Site, tmp_path: Path) -> None:
     result = run_page(f"{site.url}?manifest={site.plain}", steps, tmp_path, PAGE, routes=(),
                       settle=False)
     assert result["values"][1] == {"buttons": 0, "viewer": None}
+
+
+def test_selecting_a_patch_focuses_it_with_its_render_state(site: Site, run: list[Any]) -> None:
+    assert run[25] == 1, "pointing at the patch in Mirador's list outlines it"
+    got = run[27]
+    assert got["selected"] == served(PATCH_ID, site)
+    assert (got["layer"], got["mode"], got["overlays"]) == ("lrgb", "specular", True), got
+    assert [got["light"]["lu"], got["light"]["lv"]] == pytest.approx(PATCH_STATE["light"])
+    assert got["params"]["specExponent"] == 40 and got["params"]["specKs"] == pytest.approx(0.6)
+    fits(got["region"], PATCH_BOX)
