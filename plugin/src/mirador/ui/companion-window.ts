@@ -17,8 +17,8 @@ import { ensurePanelStyle } from './panel-style';
 /** The companion-window `content` of the Lanterna controls. */
 export const LANTERNA_CONTENT = 'lanterna';
 
-/** The text shown while the window has no Lanterna viewer. */
-export const NO_VIEWER_TEXT = 'This canvas has no Lanterna layers.';
+/** The text shown while the window has no (ready) Lanterna viewer: another canvas, or one still loading. */
+export const NO_VIEWER_TEXT = 'The Lanterna controls show here while this window shows a Lanterna canvas.';
 
 /** The window's viewer, following the registry (null: none). */
 export function useWindowViewer(windowId: string): LanternaViewer | null {
@@ -26,6 +26,8 @@ export function useWindowViewer(windowId: string): LanternaViewer | null {
   useEffect(() => watchWindowViewer(windowId, setViewer), [windowId]);
   return viewer;
 }
+
+const EMPTY_STYLE = { padding: '8px 12px', margin: 0, color: 'rgba(0, 0, 0, 0.6)' } as const;
 
 interface PanelProps {
   readonly windowId: string;
@@ -56,8 +58,7 @@ function LanternaPanel({ windowId, manifestUrl }: PanelProps): ReactElement {
   }, [viewer, manifestUrl]);
   return createElement('div', { className: 'lanterna-mirador-content' },
     createElement('div', { ref: mount }),
-    viewer ? null : createElement('p', { className: 'lanterna-mirador-empty', style: { padding: '8px 12px' } },
-      NO_VIEWER_TEXT));
+    viewer ? null : createElement('p', { className: 'lanterna-mirador-empty', style: EMPTY_STYLE }, NO_VIEWER_TEXT));
 }
 
 interface FactoryProps extends WrapProps {

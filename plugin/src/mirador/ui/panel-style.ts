@@ -35,7 +35,6 @@ const CSS = `
 .lanterna-mirador-panel .lanterna-presets-status[data-ok="false"] { color: #b00020; }
 .lanterna-mirador-panel [hidden] { display: none !important; }
 .lanterna-mirador-panel .lanterna-section-title { border-top: 1px solid rgba(0, 0, 0, 0.12); padding-top: 8px; margin-top: 8px; }
-.lanterna-mirador-panel .lanterna-mirador-empty { margin: 0; color: rgba(0, 0, 0, 0.6); }
 `;
 
 /** Add the stylesheet to `doc` unless it is there. */
