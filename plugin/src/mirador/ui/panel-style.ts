@@ -34,7 +34,8 @@ const CSS = `
 .lanterna-mirador-panel .lanterna-preset-save { display: flex; flex-direction: column; gap: 6px; }
 .lanterna-mirador-panel .lanterna-presets-status[data-ok="false"] { color: #b00020; }
 .lanterna-mirador-panel [hidden] { display: none !important; }
-.lanterna-mirador-panel .lanterna-section-title { border-top: 1px solid rgba(0, 0, 0, 0.12); padding-top: 8px; margin-top: 8px; }
+.lanterna-mirador-panel .lanterna-section-title { border-top: 1px solid rgba(0, 0, 0, 0.12); padding-top: 8px;
+  margin-top: 8px; }
 `;
 
 /** Add the stylesheet to `doc` unless it is there. */
