@@ -55,7 +55,7 @@ export function LanternaWindowView(props: SwitchProps & { readonly lanterna: Lan
     const layer = canvas.layers.find((l) => l.imageId === top?.imageId)?.id;
     let lanterna: LanternaViewer;
     try {
-      lanterna = createViewer({ element, manifest: canvas.manifestUrl, ...(layer ? { layer } : {}) });
+      lanterna = createViewer({ element, manifest: canvas.manifestUrl, mode: 'pan', ...(layer ? { layer } : {}) });
     } catch (e: unknown) {
       setError(e instanceof Error ? e.message : String(e));
       return undefined;
