@@ -1,5 +1,5 @@
 """Real Chromium, real Mirador 4 (the ready bundle, /viewer/mirador.html): the window's Lanterna
-controls and Mirador's annotation panel driving our view (docs/mirador-ui.md).
+controls and Mirador's annotation panel driving our view (docs/mirador.md).
 
 A two-layer PTM dataset whose canvas carries, besides its painting, an annotation page in the
 encoding stock viewers list (an overlay level with ``commenting`` and its drawing's bounding box as

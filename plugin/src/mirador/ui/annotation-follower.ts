@@ -1,5 +1,5 @@
 /**
- * Mirador's annotation panel driving the Lanterna view (docs/mirador-ui.md): an `add` plugin of
+ * Mirador's annotation panel driving the Lanterna view (docs/mirador.md): an `add` plugin of
  * `Window` (rendered once per window, drawing nothing) that follows the window's
  * `selectedAnnotationId` and `hoveredAnnotationIds`. Selecting an annotation runs its
  * {@link selectionPlan} on the window's Lanterna viewer (fit its region, show the overlays, focus a

@@ -1,5 +1,5 @@
 /**
- * The "Lanterna" companion window of a Mirador window (docs/mirador-ui.md): a `wrap` plugin of
+ * The "Lanterna" companion window of a Mirador window (docs/mirador.md): a `wrap` plugin of
  * Mirador's `CompanionWindowFactory` that renders the windows whose `content` is `lanterna` itself —
  * Mirador's own companion-window frame around our controls panel (`controls-panel.ts`), mounted in
  * a React ref for the window's Lanterna viewer (`registry.ts`) — and leaves every other content to

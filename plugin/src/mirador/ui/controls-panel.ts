@@ -1,5 +1,5 @@
 /**
- * The content of the Lanterna companion window (docs/mirador-ui.md): the viewer page's panel
+ * The content of the Lanterna companion window (docs/mirador.md): the viewer page's panel
  * sections (`panel/`, plain DOM over the public viewer API) for one window's Lanterna viewer —
  * what a drag does, the lens and annotation-overlay switches, the render mode and its parameter
  * sliders, the light (angles and raking buttons), the lens section and the presets.

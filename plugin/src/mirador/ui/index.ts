@@ -1,5 +1,5 @@
 /**
- * The window's Lanterna controls and annotation following for Mirador 4 (docs/mirador-ui.md): the
+ * The window's Lanterna controls and annotation following for Mirador 4 (docs/mirador.md): the
  * "Lanterna" companion window, the top-bar button that opens it, and Mirador's annotation panel
  * driving the Lanterna view.
  */

@@ -1,7 +1,7 @@
 /**
  * What the Lanterna view does when an annotation is selected in Mirador's annotation panel: the
  * steps, worked out purely from the annotation's target and what the viewer shows
- * (docs/mirador-ui.md, "Controls and annotations").
+ * (docs/mirador.md, "Controls and annotations").
  *
  * - a patch the viewer knows: `focusAnnotation` (its rectangle, with the render state it was drawn under), overlays on;
  * - an overlay level: its layer made active (when it is another), overlays on, the view fitted to the
