@@ -85,3 +85,29 @@ def test_hsh_planes_equal_numpy_quantisation() -> None:
     for t in range(9):
         assert np.array_equal(planes[t], q[t].reshape(-1, 3))
     assert len(np.unique(planes)) > 200  # the test exercises the whole byte range
+
+
+@pytest.mark.parametrize("n", [7, 24, 40])
+def test_vectorised_rank_window_equals_the_pixel_loop_bit_for_bit(n: int) -> None:
+    """The chunk path (≤ 64 lights, loops over pixels innermost) against the per-pixel one on
+    ties, black pixels, shadowed samples and dim pixels, for three windows."""
+    from lanterna.tiler.fit import normals_kernel as nk
+    from tests.python.fixtures.photos import spiral_lights
+
+    rng = np.random.default_rng(n)
+    lights = spiral_lights(n, (12.0, 80.0))
+    colour = rng.random((n, 700, 3)).astype(np.float32)
+    colour[:, :60] = np.round(colour[:, :60] * 4) / 4  # ties
+    colour[:, 60:70] = 0.0  # black
+    colour[: n // 3, 70:300] = 0.0  # shadowed samples
+    colour[:, 300:320] *= np.float32(1e-4)
+    lum = colour @ np.array([0.2125, 0.7154, 0.0721], np.float32)
+    for lo, hi, shadow in ((n // 4, 3 * n // 4, 0.05), (0, n, 0.0), (n // 2, n // 2 + 2, 0.3)):
+        out = [np.full((700, 3), np.nan, np.float32) for _ in range(4)]
+        nk._chunk(lum, colour, lights, lo, hi, shadow, out[0], out[1], 0, 700)
+        keep = np.empty(n, np.bool_)
+        for q in range(700):
+            nk._pixel(lum[:, q].astype(np.float64), colour, lights, lo, hi, shadow, out[2],
+                      out[3], q, keep)
+        assert np.array_equal(out[0], out[2]) and np.array_equal(out[1], out[3])
+        assert np.isfinite(out[0]).all() and len(np.unique(out[0][:, 2])) > 100
