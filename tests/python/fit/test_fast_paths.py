@@ -5,6 +5,8 @@ quantise_kernel` against ``ptm_quantize`` / ``hsh_quantize`` and the plane gathe
 
 from __future__ import annotations
 
+from pathlib import Path
+
 import numpy as np
 import pytest
 
@@ -111,3 +113,26 @@ def test_vectorised_rank_window_equals_the_pixel_loop_bit_for_bit(n: int) -> Non
                       out[3], q, keep)
         assert np.array_equal(out[0], out[2]) and np.array_equal(out[1], out[3])
         assert np.isfinite(out[0]).all() and len(np.unique(out[0][:, 2])) > 100
+
+
+@pytest.mark.parametrize("depth", [8, 16])
+def test_pca_sample_from_disk_equals_the_sample_of_the_loaded_stack(tmp_path: Path,
+                                                                   depth: int) -> None:
+    """The sampling pass converts only the chosen pixels of the decoded bands: the same floats
+    as the sample of the whole stack loaded in memory, at any band height."""
+    from lanterna.tiler.fit.pca_sample import sample_pixels
+    from lanterna.tiler.inputs.lp import read_lp
+    from lanterna.tiler.inputs.stack import StackReader, load_stack
+    from tests.python.fixtures.photos import spiral_lights, write_collection
+
+    rng = np.random.default_rng(depth)
+    lights = spiral_lights(9)
+    lp = write_collection(tmp_path / "photos", rng.random((9, 23, 31, 3)).astype(np.float32),
+                          lights, depth=depth)
+    files, _ = read_lp(lp, lp.parent)
+    ref = sample_pixels(load_stack(files), 23, cap=200)
+    for rows in (1, 5, 23):
+        got = sample_pixels(StackReader(files), rows, cap=200)
+        assert got.shape == (200, 9, 3)
+        assert np.array_equal(got, ref)
+    assert len(np.unique(ref)) > 100
