@@ -345,7 +345,7 @@ def _pieces(images: Images, spans: Sequence[tuple[int, int]], rows: int
     # 4 KB page (as much as the conversion itself); each piece is solved and its outputs taken
     # before the next one is made, and no step keeps a view of its input
     n, width = images.shape[0], images.shape[2]
-    buffer = np.empty(n * rows * width * 3, np.float32)
+    buffer = np.empty(n * rows * width * 3 if isinstance(images, StackReader) else 0, np.float32)
     with ThreadPoolExecutor(max_workers=1, thread_name_prefix="lanterna-read") as pool:
         ahead = pool.submit(read, spans[0]) if spans else None
         for i, (y0, y1) in enumerate(spans):
