@@ -6,10 +6,11 @@ registers: a stable argsort of its luminances, the rank window ∩ non-shadowed 
 non-shadowed ones if fewer than 3), the 3×3 normal equations (ridge 1e-9, solved by Cramer's
 rule), ``n = g/|g|`` with ``n_z ≥ 0``, and the per-channel albedo ``Σ w I s / Σ w s²``.  The same
 steps as :func:`~lanterna.tiler.fit.normals.solve_normals_band` with ``iterations=0`` (its
-reference, checked in tests/python/fit/test_normals_kernel.py); the sums run in another order
+reference, checked in tests/python/fit/test_engine_kernels.py); the sums run in another order
 and the 3×3 solve is another algorithm, so results agree to float32 rounding, not bit for bit.
 Up to 64 lights a chunk of pixels runs these steps with the pixels innermost (:func:`_chunk`,
-vectorised: about half the CPU time of the pixel loop), bit for bit the pixel loop's results.
+vectorised: about half the CPU time of the pixel loop), bit for bit the pixel loop's results
+(tests/python/fit/test_fast_paths.py).
 """
 
 from __future__ import annotations

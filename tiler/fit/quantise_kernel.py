@@ -7,7 +7,7 @@ band, then gathered every plane's three bytes with a strided copy; here each byt
 where it is written, in parallel over pixels, with the numpy formulas' float32 operations in
 the same order — :func:`~lanterna.tiler.fit.ptm.ptm_quantize` (``rint(a / scale + bias)``) or
 :func:`~lanterna.tiler.fit.hsh.hsh_quantize` (``rint((a − bias) / scale · 255)``), clipped to
-0–255 — so the bytes are the same (tests/python/fit/test_quantise_kernel.py).
+0–255 — so the bytes are the same (tests/python/fit/test_fast_paths.py).
 """
 
 from __future__ import annotations
