@@ -99,9 +99,10 @@ def _read_pass(files: list[Path], rows: int) -> None:
         reader[:, y0:y0 + rows]
 
 
-def _fit(files: list[Path], lts: np.ndarray, key: str, held: int, scratch: Path) -> None:
-    """One streamed fit of ``key``; a PCA basis (rbf, bilinear) also makes its sampling pass
-    first, as ``lanterna fit`` does (:func:`~lanterna.tiler.fit.run.fit_sets`)."""
+def _fit(files: Any, lts: np.ndarray, key: str, held: int, scratch: Path) -> None:
+    """One streamed fit of ``key`` (of the image files, or of a stack in memory); a PCA basis
+    (rbf, bilinear) also makes its sampling pass first, as ``lanterna fit`` does
+    (:func:`~lanterna.tiler.fit.run.fit_sets`)."""
     from lanterna.tiler.fit.engine import auto_band_rows, fit_stream
     from lanterna.tiler.fit.pca import PcaSpec
     from lanterna.tiler.fit.pca_band import pca_models
@@ -110,7 +111,7 @@ def _fit(files: list[Path], lts: np.ndarray, key: str, held: int, scratch: Path)
 
     out = Path(tempfile.mkdtemp(dir=scratch))
     try:
-        stack = StackReader(files)
+        stack = files if isinstance(files, np.ndarray) else StackReader(files)
         keys, extra = [key], []
         if key in PCA_TYPES:
             n, _, width, _ = stack.shape
@@ -142,14 +143,18 @@ def throughput(args: argparse.Namespace) -> dict[str, Any]:
             if held:
                 cases[f"{key} + leave-one-out"] = (lambda k=key: _fit(files, lts, k, held, work))
         times: dict[str, list[float]] = {name: [] for name in cases}
+        cpus: dict[str, list[float]] = {name: [] for name in cases}
         for r in range(args.rounds):
             for name, run in cases.items():
-                t = time.perf_counter()
+                c, t = _cpu(), time.perf_counter()
                 run()
                 times[name].append(time.perf_counter() - t)
-                print(f"round {r + 1}: {name}: {times[name][-1]:.2f} s", flush=True)
+                cpus[name].append(_cpu() - c)
+                print(f"round {r + 1}: {name}: {times[name][-1]:.2f} s "
+                      f"(CPU {cpus[name][-1]:.2f} s)", flush=True)
         mpx = len(files) * args.size * args.size / 1e6
         base = statistics.median(times["decode (libvips)"])
+        base_cpu = statistics.median(cpus["decode (libvips)"])
         result = {"size": args.size, "lights": len(files), "bandRows": rows,
                   "stackMegapixels": round(mpx, 1), "makeSeconds": round(made, 1),
                   "rounds": args.rounds, "cases": {}}
@@ -158,7 +163,10 @@ def throughput(args: argparse.Namespace) -> dict[str, Any]:
             result["cases"][name] = {"seconds": [round(t, 3) for t in ts],
                                      "median": round(med, 3),
                                      "inputMpxPerSecond": round(mpx / med, 1),
-                                     "vsDecode": round(med / base, 2)}
+                                     "vsDecode": round(med / base, 2),
+                                     "cpuMedian": round(statistics.median(cpus[name]), 3),
+                                     "cpuVsDecodeCpu": round(statistics.median(cpus[name])
+                                                             / base_cpu, 2)}
         return result
     finally:
         shutil.rmtree(work, ignore_errors=True)
@@ -170,8 +178,8 @@ def _cpu() -> float:
 
 
 def one(args: argparse.Namespace) -> dict[str, Any]:
-    """One timed fit in this interpreter (``compare``'s worker): decode, then the fit."""
-    from lanterna.tiler.fit.engine import fit_stream
+    """One timed fit in this interpreter (``compare``'s worker): decode, then the fit (a PCA
+    basis with its sampling pass, as :func:`_fit`)."""
     from lanterna.tiler.inputs.lp import read_lp
     from lanterna.tiler.inputs.stack import StackReader
 
@@ -179,16 +187,13 @@ def one(args: argparse.Namespace) -> dict[str, Any]:
     files, lts = read_lp(lp, lp.parent)
     work = Path(tempfile.mkdtemp(prefix="lanterna-bench-one-", dir=args.tmp))
     try:
-        (work / "warm").mkdir()
-        warm = np.asarray(StackReader(files)[:, 0:4])  # imports, kernels from their cache
-        fit_stream(warm, lts, [args.models[0]], work / "warm", holdout_every=args.held)
+        warm = np.asarray(StackReader(files)[:, 0:8])  # imports, kernels from their cache
+        _fit(warm, lts, args.models[0], args.held, work)
         c0, t0 = _cpu(), time.perf_counter()
         _bare_decode(files)
         decode, decode_cpu = time.perf_counter() - t0, _cpu() - c0
-        (work / "fit").mkdir()
         c0, t0 = _cpu(), time.perf_counter()
-        fit_stream(StackReader(files), lts, [args.models[0]], work / "fit",
-                   holdout_every=args.held)
+        _fit(files, lts, args.models[0], args.held, work)
         return {"decode": decode, "decodeCpu": decode_cpu, "fit": time.perf_counter() - t0,
                 "fitCpu": _cpu() - c0}
     finally:

@@ -49,8 +49,10 @@ class DaskRunner:
         self._cluster: Any = None
         if address == "local" or address.startswith("local:"):
             workers = int(address.partition(":")[2] or 2)
+            # the scheduler's HTTP server on a free port: its default, 8787, may be taken by
+            # another cluster on the machine (distributed then warns and moves)
             self._cluster = LocalCluster(n_workers=workers, threads_per_worker=1,
-                                         processes=True, dashboard_address=None)
+                                         processes=True, dashboard_address=":0")
             self.client = Client(self._cluster)
         else:
             try:

@@ -29,7 +29,7 @@ from threadpoolctl import threadpool_limits
 from lanterna.tiler.formats.hsh_basis import hsh_weights
 from lanterna.tiler.formats.planes import PlaneLayer
 from lanterna.tiler.formats.ptm_model import ptm_weights
-from lanterna.tiler.inputs.stack import StackReader, to_unit
+from lanterna.tiler.inputs.stack import StackReader
 from lanterna.tiler.progress import Progress
 from lanterna.tiler.render.shading import linear_to_srgb, srgb_to_linear
 
@@ -39,6 +39,7 @@ from .lrgb_kernel import lrgb_held_out_compiled
 from .normals import check_lights
 from .ptm import ptm_design_matrix, ptm_pinv
 from .sinks import Sinks
+from .unit_kernel import to_unit_compiled
 
 Images = npt.NDArray[np.float32] | StackReader
 Lights = npt.NDArray[np.float64]
@@ -332,13 +333,19 @@ def _pieces(images: Images, spans: Sequence[tuple[int, int]], rows: int
     The read bands of a :class:`StackReader` stay as stored (8-bit: a quarter of the float
     band) and are read a band ahead in a thread (libvips decodes without the GIL); each sub-band
     becomes float32 only when it is solved, so it and its solvers' temporaries stay in cache.
-    The values are those of ``images[:, y0:y1]``.
+    The values are those of ``images[:, y0:y1]``; a piece is valid until the next one is
+    asked for (they share one buffer).
     """
     def read(span: tuple[int, int]) -> Any:
         if isinstance(images, StackReader):
             return images.native_rows(*span)
         return images[:, span[0]:span[1]]
 
+    # one float buffer for every sub-band: a fresh 4 MB array each time costs a page fault per
+    # 4 KB page (as much as the conversion itself); each piece is solved and its outputs taken
+    # before the next one is made, and no step keeps a view of its input
+    n, width = images.shape[0], images.shape[2]
+    buffer = np.empty(n * rows * width * 3 if isinstance(images, StackReader) else 0, np.float32)
     with ThreadPoolExecutor(max_workers=1, thread_name_prefix="lanterna-read") as pool:
         ahead = pool.submit(read, spans[0]) if spans else None
         for i, (y0, y1) in enumerate(spans):
@@ -348,9 +355,9 @@ def _pieces(images: Images, spans: Sequence[tuple[int, int]], rows: int
             for r0 in range(0, y1 - y0, rows):
                 r1 = min(y1 - y0, r0 + rows)
                 if isinstance(images, StackReader):
-                    piece = np.empty((len(band), r1 - r0, images.shape[2], 3), np.float32)
+                    piece = buffer[:n * (r1 - r0) * width * 3].reshape(n, r1 - r0, width, 3)
                     for k, (image_rows, full_scale) in enumerate(band):
-                        to_unit(image_rows[r0:r1], full_scale, piece[k])
+                        to_unit_compiled(image_rows[r0:r1], full_scale, piece[k])
                 else:
                     piece = np.asarray(band[:, r0:r1], np.float32)
                 yield y0 + r1, piece

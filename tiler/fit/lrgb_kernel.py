@@ -24,40 +24,51 @@ _CHUNK = 512  # pixels per parallel task
 def _lrgb(band: npt.NDArray[np.float32], pinv: npt.NDArray[np.float64],
           weights: npt.NDArray[np.float64], coeffs: npt.NDArray[np.float32],
           rgb: npt.NDArray[np.uint8]) -> None:
+    # every loop runs over the chunk's pixels innermost (vectorised across pixels); each
+    # pixel's sums still run over the lights in order, so the results are those of a pixel loop
     n, p = band.shape[0], band.shape[1]
     k = pinv.shape[0]
     for chunk in numba.prange((p + _CHUNK - 1) // _CHUNK):
         q0, q1 = chunk * _CHUNK, min(p, (chunk + 1) * _CHUNK)
-        lum = np.empty((q1 - q0, n))
-        for i in range(n):  # light-major input read in order, into pixel-major luminance
-            for q in range(q0, q1):
-                lum[q - q0, i] = (weights[0] * band[i, q, 0] + weights[1] * band[i, q, 1]
-                                  + weights[2] * band[i, q, 2])
-        proj = np.zeros((q1 - q0, 3))
-        energy = np.zeros(q1 - q0)
-        for q in range(q0, q1):
-            y = lum[q - q0]
-            peak = y.max()
-            scale = 1.0 / peak if peak > 1e-6 else 0.0
-            for i in range(n):
-                y[i] *= scale
-                energy[q - q0] += y[i] * y[i]
-            for t in range(k):
-                acc = 0.0
-                for i in range(n):
-                    acc += pinv[t, i] * y[i]
-                coeffs[q, t] = 255.0 * acc
+        m = q1 - q0
+        lum = np.empty((n, m))
         for i in range(n):
-            for q in range(q0, q1):
-                yn = lum[q - q0, i]
-                for c in range(3):
-                    proj[q - q0, c] += band[i, q, c] * yn
-        for q in range(q0, q1):
-            e = energy[q - q0]
+            src = band[i, q0:q1]
+            for q in range(m):
+                lum[i, q] = (weights[0] * src[q, 0] + weights[1] * src[q, 1]
+                             + weights[2] * src[q, 2])
+        scale = lum[0].copy()  # the peak over the lights, then its inverse
+        for i in range(1, n):
+            for q in range(m):
+                scale[q] = max(scale[q], lum[i, q])
+        for q in range(m):
+            scale[q] = 1.0 / scale[q] if scale[q] > 1e-6 else 0.0
+        energy = np.zeros(m)
+        proj = np.zeros((3, m))
+        for i in range(n):
+            src = band[i, q0:q1]
+            for q in range(m):
+                y = lum[i, q] * scale[q]
+                lum[i, q] = y
+                energy[q] += y * y
+                proj[0, q] += src[q, 0] * y
+                proj[1, q] += src[q, 1] * y
+                proj[2, q] += src[q, 2] * y
+        acc = np.empty(m)
+        for t in range(k):
+            acc[:] = 0.0
+            for i in range(n):
+                w = pinv[t, i]
+                for q in range(m):
+                    acc[q] += w * lum[i, q]
+            for q in range(m):
+                coeffs[q0 + q, t] = 255.0 * acc[q]
+        for q in range(m):
+            e = energy[q]
             inv = 1.0 / e if e > 1e-12 else 1.0
             for c in range(3):
-                v = np.rint(proj[q - q0, c] * inv * 255.0)
-                rgb[q, c] = np.uint8(min(max(v, 0.0), 255.0))
+                v = np.rint(proj[c, q] * inv * 255.0)
+                rgb[q0 + q, c] = np.uint8(min(max(v, 0.0), 255.0))
 
 
 def lrgb_band_compiled(band: npt.NDArray[np.float32], pinv: npt.NDArray[np.floating],
@@ -78,47 +89,68 @@ def _lrgb_held_out(band: npt.NDArray[np.float32], pinv: npt.NDArray[np.float64],
                    weights: npt.NDArray[np.float64], train: npt.NDArray[np.intp],
                    held: npt.NDArray[np.intp], basis: npt.NDArray[np.float64],
                    sse: npt.NDArray[np.float64]) -> None:
+    # as _lrgb: the chunk's pixels innermost, each pixel's sums over the lights in order, and
+    # the chunk's squared errors summed over its pixels in order (the pixel loop's results)
     n_train, p, h = train.shape[0], band.shape[1], held.shape[0]
     k = pinv.shape[0]
-    chunks = (p + _CHUNK - 1) // _CHUNK
-    for chunk in numba.prange(chunks):
-        y = np.empty(n_train)
-        coeffs = np.empty(k)
-        for q in range(chunk * _CHUNK, min(p, (chunk + 1) * _CHUNK)):
+    for chunk in numba.prange((p + _CHUNK - 1) // _CHUNK):
+        q0, q1 = chunk * _CHUNK, min(p, (chunk + 1) * _CHUNK)
+        m = q1 - q0
+        y = np.empty((n_train, m))
+        for j in range(n_train):
+            src = band[train[j], q0:q1]
+            for q in range(m):
+                y[j, q] = (weights[0] * src[q, 0] + weights[1] * src[q, 1]
+                           + weights[2] * src[q, 2])
+        scale = y[0].copy()
+        for j in range(1, n_train):
+            for q in range(m):
+                scale[q] = max(scale[q], y[j, q])
+        for q in range(m):
+            scale[q] = 1.0 / scale[q] if scale[q] > 1e-6 else 0.0
+        sums = np.zeros((4, m))  # energy, the colour's three projections
+        for j in range(n_train):
+            src = band[train[j], q0:q1]
+            for q in range(m):
+                yn = y[j, q] * scale[q]
+                y[j, q] = yn
+                sums[0, q] += yn * yn
+                sums[1, q] += src[q, 0] * yn
+                sums[2, q] += src[q, 1] * yn
+                sums[3, q] += src[q, 2] * yn
+        coeffs = np.zeros((k, m))
+        for t in range(k):
             for j in range(n_train):
-                i = train[j]
-                y[j] = (weights[0] * band[i, q, 0] + weights[1] * band[i, q, 1]
-                        + weights[2] * band[i, q, 2])
-            peak = y.max()
-            scale = 1.0 / peak if peak > 1e-6 else 0.0
-            energy = 0.0
-            p0 = p1 = p2 = 0.0
-            for j in range(n_train):
-                y[j] *= scale
-                energy += y[j] * y[j]
-                i = train[j]
-                p0 += band[i, q, 0] * y[j]
-                p1 += band[i, q, 1] * y[j]
-                p2 += band[i, q, 2] * y[j]
+                w = pinv[t, j]
+                for q in range(m):
+                    coeffs[t, q] += w * y[j, q]
+            for q in range(m):
+                coeffs[t, q] *= 255.0
+        rgb = np.empty((3, m))
+        for q in range(m):
+            e = sums[0, q]
+            inv = 1.0 / e if e > 1e-12 else 1.0
+            for c in range(3):
+                rgb[c, q] = min(max(np.rint(sums[1 + c, q] * inv * 255.0), 0.0), 255.0) / 255.0
+        lum = np.empty(m)
+        err = np.empty(m)
+        for mm in range(h):
+            lum[:] = 0.0
             for t in range(k):
-                acc = 0.0
-                for j in range(n_train):
-                    acc += pinv[t, j] * y[j]
-                coeffs[t] = 255.0 * acc
-            inv = 1.0 / energy if energy > 1e-12 else 1.0
-            rgb0 = min(max(np.rint(p0 * inv * 255.0), 0.0), 255.0) / 255.0
-            rgb1 = min(max(np.rint(p1 * inv * 255.0), 0.0), 255.0) / 255.0
-            rgb2 = min(max(np.rint(p2 * inv * 255.0), 0.0), 255.0) / 255.0
-            for m in range(h):
-                lum = 0.0
-                for t in range(k):
-                    lum += coeffs[t] * basis[m, t]
-                lum /= 255.0
-                i = held[m]
-                d0 = min(max(rgb0 * lum, 0.0), 1.0) - band[i, q, 0]
-                d1 = min(max(rgb1 * lum, 0.0), 1.0) - band[i, q, 1]
-                d2 = min(max(rgb2 * lum, 0.0), 1.0) - band[i, q, 2]
-                sse[chunk, m] += d0 * d0 + d1 * d1 + d2 * d2
+                b = basis[mm, t]
+                for q in range(m):
+                    lum[q] += coeffs[t, q] * b
+            src = band[held[mm], q0:q1]
+            for q in range(m):
+                v = lum[q] / 255.0
+                d0 = min(max(rgb[0, q] * v, 0.0), 1.0) - src[q, 0]
+                d1 = min(max(rgb[1, q] * v, 0.0), 1.0) - src[q, 1]
+                d2 = min(max(rgb[2, q] * v, 0.0), 1.0) - src[q, 2]
+                err[q] = d0 * d0 + d1 * d1 + d2 * d2
+            acc = 0.0
+            for q in range(m):
+                acc += err[q]
+            sse[chunk, mm] += acc
 
 
 def lrgb_held_out_compiled(band: npt.NDArray[np.float32], pinv: npt.NDArray[np.floating],

@@ -6,8 +6,11 @@ registers: a stable argsort of its luminances, the rank window ∩ non-shadowed 
 non-shadowed ones if fewer than 3), the 3×3 normal equations (ridge 1e-9, solved by Cramer's
 rule), ``n = g/|g|`` with ``n_z ≥ 0``, and the per-channel albedo ``Σ w I s / Σ w s²``.  The same
 steps as :func:`~lanterna.tiler.fit.normals.solve_normals_band` with ``iterations=0`` (its
-reference, checked in tests/python/fit/test_normals_kernel.py); the sums run in another order
+reference, checked in tests/python/fit/test_engine_kernels.py); the sums run in another order
 and the 3×3 solve is another algorithm, so results agree to float32 rounding, not bit for bit.
+Up to 64 lights a chunk of pixels runs these steps with the pixels innermost (:func:`_chunk`,
+vectorised: about half the CPU time of the pixel loop), bit for bit the pixel loop's results
+(tests/python/fit/test_fast_paths.py).
 """
 
 from __future__ import annotations
@@ -29,6 +32,11 @@ def _rank_window(lum: npt.NDArray[np.floating], colour: npt.NDArray[np.floating]
                  lights: npt.NDArray[np.float64], lo: int, hi: int, shadow: float,
                  normals: npt.NDArray[np.float32], albedo: npt.NDArray[np.float32]) -> None:
     n, p = lum.shape
+    if n <= 64:  # ranks by counting, vectorised across the chunk's pixels
+        for chunk in numba.prange((p + _CHUNK - 1) // _CHUNK):
+            q0, q1 = chunk * _CHUNK, min(p, (chunk + 1) * _CHUNK)
+            _chunk(lum, colour, lights, lo, hi, shadow, normals, albedo, q0, q1)
+        return
     for chunk in numba.prange((p + _CHUNK - 1) // _CHUNK):
         q0, q1 = chunk * _CHUNK, min(p, (chunk + 1) * _CHUNK)
         # the chunk's luminances pixel-major (the input is light-major: a cache line a sample)
@@ -39,6 +47,119 @@ def _rank_window(lum: npt.NDArray[np.floating], colour: npt.NDArray[np.floating]
         keep = np.empty(n, np.bool_)
         for q in range(q0, q1):
             _pixel(ys[q - q0], colour, lights, lo, hi, shadow, normals, albedo, q, keep)
+
+
+@numba.njit(cache=True, nogil=True)
+def _chunk(lum: npt.NDArray[np.floating], colour: npt.NDArray[np.floating],
+           lights: npt.NDArray[np.float64], lo: int, hi: int, shadow: float,
+           normals: npt.NDArray[np.float32], albedo: npt.NDArray[np.float32],
+           q0: int, q1: int) -> None:
+    """Pixels ``q0:q1`` (at most 64 lights): :func:`_select` and :func:`_pixel`'s arithmetic
+    with every loop over the pixels innermost, so it runs on vectors of pixels.  Each pixel's
+    sums add the same terms in the same order (a sample left out adds 0.0, which changes no
+    sum), so the results are bit for bit those of the pixel loop."""
+    n, m = lum.shape[0], q1 - q0
+    y = np.empty((n, m), lum.dtype)  # contiguous rows: the loops below vectorise
+    for i in range(n):
+        y[i] = lum[i, q0:q1]
+    threshold = np.empty(m)
+    for q in range(m):
+        threshold[q] = float(y[0, q])
+    for i in range(1, n):
+        for q in range(m):
+            threshold[q] = max(threshold[q], float(y[i, q]))
+    for q in range(m):
+        threshold[q] *= shadow
+    keep = np.empty((n, m), np.bool_)
+    count = np.zeros(m, np.int32)
+    rank = np.empty(m, np.int32)
+    for i in range(n):
+        yi = y[i]
+        rank[:] = 0
+        for j in range(i):  # earlier equal samples rank lower
+            yj = y[j]
+            for q in range(m):
+                rank[q] += np.int32(yj[q] <= yi[q])
+        for j in range(i + 1, n):
+            yj = y[j]
+            for q in range(m):
+                rank[q] += np.int32(yj[q] < yi[q])
+        ki = keep[i]
+        for q in range(m):
+            k = (rank[q] >= lo) & (rank[q] < hi) & (float(yi[q]) > threshold[q])
+            ki[q] = k
+            count[q] += np.int32(k)
+    for i in range(n):
+        for q in range(m):
+            if count[q] < 3:
+                keep[i, q] = float(y[i, q]) > threshold[q]
+    a = np.zeros((9, m))  # a00 a11 a22 a01 a02 a12 b0 b1 b2
+    for i in range(n):
+        lx, ly, lz = lights[i, 0], lights[i, 1], lights[i, 2]
+        for q in range(m):
+            k = keep[i, q]
+            yi = float(y[i, q])
+            a[0, q] += lx * lx if k else 0.0
+            a[1, q] += ly * ly if k else 0.0
+            a[2, q] += lz * lz if k else 0.0
+            a[3, q] += lx * ly if k else 0.0
+            a[4, q] += lx * lz if k else 0.0
+            a[5, q] += ly * lz if k else 0.0
+            a[6, q] += yi * lx if k else 0.0
+            a[7, q] += yi * ly if k else 0.0
+            a[8, q] += yi * lz if k else 0.0
+    nrm = np.empty((3, m))
+    for q in range(m):
+        g0, g1, g2 = _solve3(a[0, q] + _RIDGE, a[1, q] + _RIDGE, a[2, q] + _RIDGE, a[3, q],
+                             a[4, q], a[5, q], a[6, q], a[7, q], a[8, q])
+        nx, ny, nz = _unit(g0, g1, g2)
+        nrm[0, q], nrm[1, q], nrm[2, q] = nx, ny, nz
+        normals[q0 + q, 0], normals[q0 + q, 1], normals[q0 + q, 2] = nx, ny, nz
+    r = np.zeros((4, m))  # den r0 r1 r2
+    for i in range(n):
+        lx, ly, lz = lights[i, 0], lights[i, 1], lights[i, 2]
+        c = colour[i, q0:q1]
+        for q in range(m):
+            k = keep[i, q]
+            s = max(0.0, nrm[0, q] * lx + nrm[1, q] * ly + nrm[2, q] * lz) if k else 0.0
+            r[0, q] += s * s
+            r[1, q] += s * c[q, 0] if k else 0.0
+            r[2, q] += s * c[q, 1] if k else 0.0
+            r[3, q] += s * c[q, 2] if k else 0.0
+    for q in range(m):
+        den = max(r[0, q], 1e-12)
+        albedo[q0 + q, 0] = r[1, q] / den
+        albedo[q0 + q, 1] = r[2, q] / den
+        albedo[q0 + q, 2] = r[3, q] / den
+
+
+@numba.njit(cache=True, nogil=True, inline="always")
+def _solve3(a00: float, a11: float, a22: float, a01: float, a02: float, a12: float,
+            b0: float, b1: float, b2: float) -> tuple[float, float, float]:
+    """The symmetric 3×3 system by Cramer's rule; ``(0, 0, 0)`` if singular."""
+    c00 = a11 * a22 - a12 * a12
+    c01 = a02 * a12 - a01 * a22
+    c02 = a01 * a12 - a02 * a11
+    det = a00 * c00 + a01 * c01 + a02 * c02
+    if det == 0.0:
+        return 0.0, 0.0, 0.0
+    c11 = a00 * a22 - a02 * a02
+    c12 = a01 * a02 - a00 * a12
+    c22 = a00 * a11 - a01 * a01
+    return ((c00 * b0 + c01 * b1 + c02 * b2) / det, (c01 * b0 + c11 * b1 + c12 * b2) / det,
+            (c02 * b0 + c12 * b1 + c22 * b2) / det)
+
+
+@numba.njit(cache=True, nogil=True, inline="always")
+def _unit(g0: float, g1: float, g2: float) -> tuple[float, float, float]:
+    """``g/|g|`` flipped to ``n_z ≥ 0``; ``(0, 0, 1)`` for ``|g|`` ≈ 0."""
+    norm = math.sqrt(g0 * g0 + g1 * g1 + g2 * g2)
+    if not norm > 1e-12:
+        return 0.0, 0.0, 1.0
+    nx, ny, nz = g0 / norm, g1 / norm, g2 / norm
+    if nz < 0:
+        return -nx, -ny, -nz
+    return nx, ny, nz
 
 
 @numba.njit(cache=True, nogil=True)
@@ -94,28 +215,8 @@ def _pixel(y: npt.NDArray[np.float64], colour: npt.NDArray[np.floating],
             b0 += y[i] * lx
             b1 += y[i] * ly
             b2 += y[i] * lz
-    a00 += _RIDGE
-    a11 += _RIDGE
-    a22 += _RIDGE
-    c00 = a11 * a22 - a12 * a12
-    c01 = a02 * a12 - a01 * a22
-    c02 = a01 * a12 - a02 * a11
-    det = a00 * c00 + a01 * c01 + a02 * c02
-    g0 = g1 = g2 = 0.0
-    if det != 0.0:
-        c11 = a00 * a22 - a02 * a02
-        c12 = a01 * a02 - a00 * a12
-        c22 = a00 * a11 - a01 * a01
-        g0 = (c00 * b0 + c01 * b1 + c02 * b2) / det
-        g1 = (c01 * b0 + c11 * b1 + c12 * b2) / det
-        g2 = (c02 * b0 + c12 * b1 + c22 * b2) / det
-    norm = math.sqrt(g0 * g0 + g1 * g1 + g2 * g2)
-    if norm > 1e-12:
-        nx, ny, nz = g0 / norm, g1 / norm, g2 / norm
-    else:
-        nx, ny, nz = 0.0, 0.0, 1.0
-    if nz < 0:
-        nx, ny, nz = -nx, -ny, -nz
+    g0, g1, g2 = _solve3(a00 + _RIDGE, a11 + _RIDGE, a22 + _RIDGE, a01, a02, a12, b0, b1, b2)
+    nx, ny, nz = _unit(g0, g1, g2)
     normals[q, 0], normals[q, 1], normals[q, 2] = nx, ny, nz
     den = 0.0
     r0 = r1 = r2 = 0.0

@@ -4,7 +4,8 @@ The image size is known from the headers, so the sample is drawn up front: ``S``
 indices chosen uniformly at random (a fixed seed, so a fit is reproducible), sorted; one pass
 top to bottom copies each band's chosen pixels (every light's sample of them).  The result is
 the sample a reservoir over the bands would give, without its per-band bookkeeping, and is the
-same whatever the band height or the reader (a stack in memory or read from disk).  Memory:
+same whatever the band height or the reader (a stack in memory or read from disk; from disk
+only the chosen pixels are converted to float).  Memory:
 ``S × n × 3`` float32, ``S`` = min(:data:`SAMPLE_PIXELS`, :data:`SAMPLE_BYTES` / (12·n),
 pixels), plus one band.
 """
@@ -17,6 +18,7 @@ from typing import Any
 import numpy as np
 import numpy.typing as npt
 
+from lanterna.tiler.inputs.stack import StackReader, to_unit
 from lanterna.tiler.progress import Progress
 
 #: Most pixels sampled (Relight's ``nsamples``, 2^16).
@@ -51,12 +53,25 @@ def sample_pixels(images: Any, band_rows: int, *, budget: int = SAMPLE_BYTES,
     for y0 in range(0, h, band_rows):
         y1 = min(h, y0 + band_rows)
         a, b = np.searchsorted(chosen, [y0 * w, y1 * w])
-        band = np.asarray(images[:, y0:y1], np.float32)
         if b > a:
             rows, cols = np.divmod(chosen[a:b], w)
-            out[a:b] = band[:, rows - y0, cols].transpose(1, 0, 2)
+            _take(images, y0, y1, rows - y0, cols, out[a:b])
         if bar:
             bar.update(y1)
     if hasattr(images, "close"):
         images.close()  # the next pass starts from the top again
     return out
+
+
+def _take(images: Any, y0: int, y1: int, rows: npt.NDArray[np.intp],
+          cols: npt.NDArray[np.intp], out: npt.NDArray[np.float32]) -> None:
+    """``out (s, n, 3)`` = the pixels ``(rows, cols)`` of band ``y0:y1`` of every light.
+
+    From a :class:`~lanterna.tiler.inputs.stack.StackReader` the band stays as decoded and only
+    the chosen pixels become float (``to_unit``: the values of ``images[:, y0:y1]``, a few
+    hundred pixels of a band instead of all of it)."""
+    if not isinstance(images, StackReader):
+        out[...] = np.asarray(images[:, y0:y1], np.float32)[:, rows, cols].transpose(1, 0, 2)
+        return
+    for k, (band, full_scale) in enumerate(images.native_rows(y0, y1)):
+        to_unit(band[rows, cols], full_scale, out[:, k])

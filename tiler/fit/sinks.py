@@ -29,8 +29,9 @@ from lanterna.tiler.formats.strip_tiff import BandImage, StripTiffWriter
 from lanterna.tiler.progress import Progress
 
 from . import bands as fb
-from .hsh import hsh_quantisation, hsh_quantize
-from .ptm import ptm_quantisation, ptm_quantize
+from .hsh import hsh_quantisation
+from .ptm import ptm_quantisation
+from .quantise_kernel import quantise_planes
 from .ward import GLOSS_LIMITS
 
 #: Bytes of float coefficients a run may keep in memory instead of scratch files.
@@ -152,30 +153,30 @@ class Sinks:
         assert spill.lo is not None and spill.hi is not None
         scale: Any
         bias: Any
-        # group name -> the (term slice, channel) of the coefficient-major bands it stores
-        parts: dict[str, tuple[slice, int | None]]
+        # group name -> its three bytes' (term, channel) in the coefficient-major bands:
+        # an HSH term holds its R, G, B; a PTM group three terms of one channel
+        parts: dict[str, list[tuple[int, int]]]
         if key == "hsh":
             scale, bias = hsh_quantisation(spill.lo, spill.hi)
-            parts = {f"t{t}": (slice(t, t + 1), None) for t in range(terms)}
+            parts = {f"t{t}": [(t, c) for c in range(3)] for t in range(terms)}
         else:
             scale, bias = ptm_quantisation(spill.lo, spill.hi)
-            thirds = [slice(3 * g, 3 * g + 3) for g in range(2)]
-            parts = ({f"c{g}": (k, None) for g, k in enumerate(thirds)} if key == "ptm-lrgb"
-                     else {f"{c}{g}": (k, ci) for ci, c in enumerate("rgb")
-                           for g, k in enumerate(thirds)})
-        quantize = hsh_quantize if key == "hsh" else ptm_quantize
+            parts = ({f"c{g}": [(3 * g + j, 0) for j in range(3)] for g in range(2)}
+                     if key == "ptm-lrgb" else
+                     {f"{c}{g}": [(3 * g + j, ci) for j in range(3)]
+                      for ci, c in enumerate("rgb") for g in range(2)})
+        plan = np.array(list(parts.values()), np.intp)
         writers = {g: StripTiffWriter(self.scratch / f"{key}-{g}.tif", self.width, self.height,
                                       3) for g in parts}
         bar = progress(f"quantising {key}", self.height) if progress else None
         done = 0
         for values in spill.bands():  # (K, b, W[, 3])
-            per_term = (-1,) + (1,) * (values.ndim - 1)
-            q = quantize(values, scale.reshape(per_term), bias.reshape(per_term))
-            for g, (k, channel) in parts.items():
-                part = q[k] if channel is None else q[k, :, :, channel]  # (terms, b, W[, 3])
-                # an HSH term holds its R, G, B; a PTM group three terms of one channel
-                writers[g].write(part[0] if key == "hsh" else np.moveaxis(part, 0, -1))
-            done += values.shape[1]
+            k, b = values.shape[:2]
+            q = quantise_planes(values.reshape(k, b * self.width, -1), scale, bias, plan,
+                                hsh=key == "hsh")
+            for g, rows in zip(parts, q, strict=True):
+                writers[g].write(rows.reshape(b, self.width, 3))
+            done += b
             if bar:
                 bar.update(done)
         planes = {g: wr.close() for g, wr in writers.items()}

@@ -5,7 +5,7 @@ numpy evaluates the Ward term of every sample of every pixel at every α of the 
 once (cosi, tan²θh, √(cosi/cosr)) and, per α, accumulates its four sums in registers, skipping
 the samples whose lobe value is below e⁻⁵⁰ of the peak (they change no sum in float64).  The
 steps and constants are :func:`~lanterna.tiler.fit.ward_solve.solve_ward_band`'s (the
-reference, checked in tests/python/fit/test_ward_kernel.py); sums run in another order, so a
+reference, checked in tests/python/fit/test_engine_kernels.py); sums run in another order, so a
 pixel whose best α is a near tie may pick the neighbouring grid value.
 """
 

@@ -1,0 +1,138 @@
+"""The second pass's compiled byte paths against the numpy code they replace, bit for bit: the
+8-/16-bit → float conversion of the sub-bands (:mod:`~lanterna.tiler.fit.unit_kernel` against
+``stack.to_unit``) and the quantisation of PTM/HSH planes (:mod:`~lanterna.tiler.fit.
+quantise_kernel` against ``ptm_quantize`` / ``hsh_quantize`` and the plane gather)."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from lanterna.tiler.fit.hsh import hsh_quantisation, hsh_quantize
+from lanterna.tiler.fit.ptm import ptm_quantisation, ptm_quantize
+from lanterna.tiler.fit.quantise_kernel import quantise_planes
+from lanterna.tiler.fit.unit_kernel import to_unit_compiled
+from lanterna.tiler.inputs.stack import to_unit
+
+
+@pytest.mark.parametrize(("dtype", "full"), [(np.uint8, 255.0), (np.uint16, 65535.0)])
+def test_compiled_to_unit_gives_the_same_floats(dtype: type, full: float) -> None:
+    rng = np.random.default_rng(3)
+    band = rng.integers(0, int(full) + 1, (7, 33, 3)).astype(dtype)
+    band[0, :2] = [[0, 0, 0], [int(full)] * 3]  # both ends of the range
+    ref = np.empty(band.shape, np.float32)
+    out = np.full(band.shape, np.nan, np.float32)
+    to_unit(band, full, ref)
+    to_unit_compiled(band, full, out)
+    assert out.dtype == np.float32
+    assert np.array_equal(out.view(np.uint32), ref.view(np.uint32))
+    assert out.min() == 0.0 and out.max() == 1.0
+
+
+def test_compiled_to_unit_copies_floats_and_strided_input() -> None:
+    band = np.linspace(0, 1, 5 * 4 * 3, dtype=np.float32).reshape(5, 4, 3)
+    out = np.zeros_like(band)
+    to_unit_compiled(band, None, out)
+    assert np.array_equal(out, band)
+    ints = np.arange(5 * 8 * 3, dtype=np.uint8).reshape(5, 8, 3)[:, ::2]  # not contiguous
+    ref, got = np.empty(ints.shape, np.float32), np.empty(ints.shape, np.float32)
+    to_unit(ints, 255.0, ref)
+    to_unit_compiled(ints, 255.0, got)
+    assert np.array_equal(got, ref)
+
+
+def _coefficients(k: int, channels: tuple[int, ...], seed: int) -> np.ndarray:
+    """Coefficient-major float32 values with extremes, halves and values past the range."""
+    rng = np.random.default_rng(seed)
+    values = rng.normal(0.0, 3.0, (k, 6, 11, *channels)).astype(np.float32)
+    values[:, 0, 0] = 0.0
+    values[0, 1, :4] = np.float32(0.5)
+    return values
+
+
+def test_ptm_planes_equal_numpy_quantisation_and_gather() -> None:
+    values = _coefficients(6, (3,), 1)
+    flat = values.reshape(6, -1)
+    scale, bias = ptm_quantisation(flat.min(axis=1), flat.max(axis=1) * 0.8)  # some clip at 255
+    q = ptm_quantize(values, scale.reshape(-1, 1, 1, 1), bias.reshape(-1, 1, 1, 1))
+    plan = np.array([[(3 * g + j, c) for j in range(3)] for c in range(3) for g in range(2)])
+    planes = quantise_planes(values.reshape(6, -1, 3), scale, bias, plan, hsh=False)
+    assert planes.shape == (6, 66, 3)
+    for p, (c, g) in enumerate((c, g) for c in range(3) for g in range(2)):
+        ref = np.moveaxis(q[3 * g:3 * g + 3, :, :, c], 0, -1).reshape(-1, 3)
+        assert np.array_equal(planes[p], ref)
+    assert planes.max() == 255 and planes.min() == 0
+
+
+def test_lrgb_planes_equal_numpy_quantisation() -> None:
+    values = _coefficients(6, (), 2)
+    flat = values.reshape(6, -1)
+    scale, bias = ptm_quantisation(flat.min(axis=1), flat.max(axis=1))
+    q = ptm_quantize(values, scale.reshape(-1, 1, 1), bias.reshape(-1, 1, 1))
+    plan = np.array([[(3 * g + j, 0) for j in range(3)] for g in range(2)])
+    planes = quantise_planes(values.reshape(6, -1, 1), scale, bias, plan, hsh=False)
+    for g in range(2):
+        assert np.array_equal(planes[g], np.moveaxis(q[3 * g:3 * g + 3], 0, -1).reshape(-1, 3))
+
+
+def test_hsh_planes_equal_numpy_quantisation() -> None:
+    values = _coefficients(9, (3,), 4)
+    flat = values.reshape(9, -1)
+    scale, bias = hsh_quantisation(flat.min(axis=1) * 0.9, flat.max(axis=1) * 0.9)
+    q = hsh_quantize(values, scale.reshape(-1, 1, 1, 1), bias.reshape(-1, 1, 1, 1))
+    plan = np.array([[(t, c) for c in range(3)] for t in range(9)])
+    planes = quantise_planes(values.reshape(9, -1, 3), scale, bias, plan, hsh=True)
+    for t in range(9):
+        assert np.array_equal(planes[t], q[t].reshape(-1, 3))
+    assert len(np.unique(planes)) > 200  # the test exercises the whole byte range
+
+
+@pytest.mark.parametrize("n", [7, 24, 40])
+def test_vectorised_rank_window_equals_the_pixel_loop_bit_for_bit(n: int) -> None:
+    """The chunk path (≤ 64 lights, loops over pixels innermost) against the per-pixel one on
+    ties, black pixels, shadowed samples and dim pixels, for three windows."""
+    from lanterna.tiler.fit import normals_kernel as nk
+    from tests.python.fixtures.photos import spiral_lights
+
+    rng = np.random.default_rng(n)
+    lights = spiral_lights(n, (12.0, 80.0))
+    colour = rng.random((n, 700, 3)).astype(np.float32)
+    colour[:, :60] = np.round(colour[:, :60] * 4) / 4  # ties
+    colour[:, 60:70] = 0.0  # black
+    colour[: n // 3, 70:300] = 0.0  # shadowed samples
+    colour[:, 300:320] *= np.float32(1e-4)
+    lum = colour @ np.array([0.2125, 0.7154, 0.0721], np.float32)
+    for lo, hi, shadow in ((n // 4, 3 * n // 4, 0.05), (0, n, 0.0), (n // 2, n // 2 + 2, 0.3)):
+        out = [np.full((700, 3), np.nan, np.float32) for _ in range(4)]
+        nk._chunk(lum, colour, lights, lo, hi, shadow, out[0], out[1], 0, 700)
+        keep = np.empty(n, np.bool_)
+        for q in range(700):
+            nk._pixel(lum[:, q].astype(np.float64), colour, lights, lo, hi, shadow, out[2],
+                      out[3], q, keep)
+        assert np.array_equal(out[0], out[2]) and np.array_equal(out[1], out[3])
+        assert np.isfinite(out[0]).all() and len(np.unique(out[0][:, 2])) > 100
+
+
+@pytest.mark.parametrize("depth", [8, 16])
+def test_pca_sample_from_disk_equals_the_sample_of_the_loaded_stack(tmp_path: Path,
+                                                                   depth: int) -> None:
+    """The sampling pass converts only the chosen pixels of the decoded bands: the same floats
+    as the sample of the whole stack loaded in memory, at any band height."""
+    from lanterna.tiler.fit.pca_sample import sample_pixels
+    from lanterna.tiler.inputs.lp import read_lp
+    from lanterna.tiler.inputs.stack import StackReader, load_stack
+    from tests.python.fixtures.photos import spiral_lights, write_collection
+
+    rng = np.random.default_rng(depth)
+    lights = spiral_lights(9)
+    lp = write_collection(tmp_path / "photos", rng.random((9, 23, 31, 3)).astype(np.float32),
+                          lights, depth=depth)
+    files, _ = read_lp(lp, lp.parent)
+    ref = sample_pixels(load_stack(files), 23, cap=200)
+    for rows in (1, 5, 23):
+        got = sample_pixels(StackReader(files), rows, cap=200)
+        assert got.shape == (200, 9, 3)
+        assert np.array_equal(got, ref)
+    assert len(np.unique(ref)) > 100
