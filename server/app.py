@@ -195,7 +195,9 @@ def _index_html(root: Path) -> str:
         rows.append(
             f'<li><a href="viewer/?manifest={html.escape(manifest)}">'
             f"{html.escape(str(desc.get('label', name)))}</a> "
-            f'<small>(<a href="datasets/{html.escape(name)}/manifest.json">IIIF manifest</a>, '
+            f'<small>(<a href="viewer/mirador.html?manifest={html.escape(manifest)}">'
+            "in Mirador</a>, "
+            f'<a href="datasets/{html.escape(name)}/manifest.json">IIIF manifest</a>, '
             f"{desc.get('width')}×{desc.get('height')})</small></li>"
         )
     items = "\n".join(rows) or "<li>No datasets yet: <code>lanterna import FILE -o DIR</code></li>"

@@ -228,6 +228,7 @@ def _print_urls(args: argparse.Namespace, address: tuple[str, int], root: Path,
         if (folder / "presets.json").is_file():  # the simplified viewer shows a dataset's presets
             simple = f"{url}viewer/simple.html?manifest={manifest}"
             print(f"  {folder.name} (simplified viewer): {simple}")
+        print(f"  {folder.name} (in Mirador): {url}viewer/mirador.html?manifest={manifest}")
     if not datasets:
         print(f"  no datasets yet: lanterna import FILE -o {root / 'NAME'}")
     if workers is None:

@@ -125,8 +125,10 @@ def test_the_built_in_server_says_what_it_is_without_the_werkzeug_banner(root: P
     lines = output.splitlines()
     assert lines[0].startswith(f"Lanterna serving {root} at http://127.0.0.1:")
     assert lines[1].startswith("  obj: http://127.0.0.1:") and "/viewer/?manifest=" in lines[1]
-    assert lines[2].startswith("Local server for this machine (127.0.0.1)")
-    assert "--workers N" in lines[2]
+    assert lines[2] == lines[1].replace("  obj: ", "  obj (in Mirador): ").replace(
+        "/viewer/?manifest=", "/viewer/mirador.html?manifest=")
+    assert lines[3].startswith("Local server for this machine (127.0.0.1)")
+    assert "--workers N" in lines[3]
     for banner in ("development server", "WSGI server", "Running on", "CTRL+C", "Debug mode"):
         assert banner not in output
 
@@ -140,6 +142,7 @@ def test_a_dataset_with_presets_also_gets_its_simplified_viewer_url(tmp_path: Pa
     assert lines[1].startswith("  obj: http://127.0.0.1:") and "/viewer/?manifest=" in lines[1]
     assert lines[2].startswith("  obj (simplified viewer): http://127.0.0.1:")
     assert lines[2].endswith("/viewer/simple.html?manifest=" + lines[1].split("manifest=")[1])
+    assert lines[3].endswith("/viewer/mirador.html?manifest=" + lines[1].split("manifest=")[1])
 
 
 def test_hidden_copies_of_a_dataset_are_not_listed(tmp_path: Path) -> None:
@@ -150,7 +153,7 @@ def test_hidden_copies_of_a_dataset_are_not_listed(tmp_path: Path) -> None:
         shutil.copytree(root / "obj", root / stale)  # a half-deleted or killed writer's folder
     _, output = _session(root)
     assert [line.split(":")[0] for line in output.splitlines() if line.startswith("  ")] == [
-        "  obj"]
+        "  obj", "  obj (in Mirador)"]
 
 
 def test_a_missing_viewer_is_one_warning(root: Path, tmp_path: Path,

@@ -101,6 +101,7 @@ def test_unknown_paths_are_404(client: FlaskClient, path: str) -> None:
 def test_index_lists_datasets_and_viewer_is_served(client: FlaskClient) -> None:
     index = client.get("/").get_data(as_text=True)
     assert "Object" in index and "viewer/?manifest=" in index
+    assert "viewer/mirador.html?manifest=http://localhost/datasets/obj/manifest.json" in index
     with client.get("/viewer/") as resp:
         assert resp.status_code == 200 and b"<title>viewer" in resp.data
 
