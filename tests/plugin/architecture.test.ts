@@ -41,15 +41,17 @@ const ALLOWED: Readonly<Record<string, readonly string[]>> = {
   tools: ['errors', 'math', 'render', 'lens', 'state', 'api'],
   // The Annotate toolbox: the patch frame, strokes and uploads, on the viewer API and the panel's authoring URLs/token.
   annotate: ['errors', 'api', 'panel'],
+  // attachLanterna: createViewer's wiring on a page's own OpenSeadragon viewer, and its example page.
+  embed: ['errors', 'tiles', 'overlay', 'drawer', 'api', 'viewer'],
   index: ['errors', 'math', 'iiif', 'render', 'gl', 'layers', 'tiles', 'lens', 'ui', 'overlay', 'drawer', 'api',
-    'panel', 'viewer', 'presets', 'state', 'measure', 'tools', 'annotations', 'annotate'],
+    'panel', 'viewer', 'presets', 'state', 'measure', 'tools', 'annotations', 'annotate', 'embed'],
   demo: ['index'],
   simple: ['index'],
 };
 
 /** The packages a part may import. */
 const PACKAGES: Readonly<Record<string, readonly string[]>> = {
-  openseadragon: ['tiles', 'lens', 'overlay', 'ui', 'drawer', 'api', 'viewer', 'measure', 'tools'],
+  openseadragon: ['tiles', 'lens', 'overlay', 'ui', 'drawer', 'api', 'viewer', 'measure', 'tools', 'embed'],
   'twgl.js': ['gl', 'layers', 'drawer'],
 };
 
