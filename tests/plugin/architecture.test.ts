@@ -59,7 +59,7 @@ const PACKAGES: Readonly<Record<string, readonly string[]>> = {
 const PURE = ['errors', 'math', 'iiif', 'render', 'presets', 'state', 'annotations'];
 /** Pure files in folders that also hold DOM code. */
 const PURE_FILES = ['annotate/patch-frame.ts', 'annotate/patch-name.ts', 'annotate/stroke-history.ts',
-  'annotate/pen-width.ts', 'annotate/build-status.ts'];
+  'annotate/pen-width.ts', 'annotate/build-status.ts', 'embed/host-check.ts', 'embed/host-drawer.ts'];
 const DOM_OR_GL = new RegExp('\\b(document|window|navigator|requestAnimationFrame|createImageBitmap|OffscreenCanvas'
   + '|HTML\\w*Element|WebGL\\w*)\\b');
 

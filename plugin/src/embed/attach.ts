@@ -13,14 +13,8 @@ import { PatchTileSource } from '../overlay/patch-source';
 import { BundleTileSource } from '../tiles/bundle-tile-source';
 import { relightDrawerOf } from '../viewer/osd-viewer';
 import { wireViewer } from '../viewer/viewer';
+import { hostProblem, type HostViewer } from './host-check';
 import { restoreCandidates } from './host-drawer';
-
-/** What OpenSeadragon 6 viewer members attaching uses (typed locally: the shipped types lack some). */
-interface HostViewer {
-  requestDrawer?: (candidate: unknown, options?: { mainDrawer?: boolean; redrawImmediately?: boolean }) => unknown;
-  isDestroyed?: () => boolean;
-  maxImageCacheCount?: number;
-}
 
 type ItemEvent = { item: OpenSeadragon.TiledImage };
 
@@ -56,17 +50,12 @@ function isLanternaItem(item: OpenSeadragon.TiledImage): boolean {
  *   Lanterna attached; {@link WebGLUnavailableError} without WebGL2
  */
 export function attachLanterna(viewer: OpenSeadragon.Viewer, options: AttachLanternaOptions): LanternaViewer {
-  const host = viewer as unknown as HostViewer;
-  if (typeof host.requestDrawer !== 'function') {
-    throw new LanternaError('attachLanterna needs an OpenSeadragon 6 viewer (it has no requestDrawer)');
-  }
-  if (host.isDestroyed?.() === true) {
-    throw new LanternaError('attachLanterna: this OpenSeadragon viewer has been destroyed');
-  }
   const before = attachments.get(viewer);
-  if (before?.live === true) {
-    throw new LanternaError('this OpenSeadragon viewer already has Lanterna attached: destroy() that one first');
+  const problem = hostProblem(viewer, before?.live === true);
+  if (problem !== null) {
+    throw new LanternaError(problem);
   }
+  const host = viewer as unknown as Required<HostViewer>;
   if (!RelightDrawer.isSupported()) {
     throw new WebGLUnavailableError('WebGL2 is not available in this browser, so the Lanterna drawer cannot start');
   }
@@ -106,6 +95,10 @@ export function attachLanterna(viewer: OpenSeadragon.Viewer, options: AttachLant
   const release = (): void => {
     viewer.world.removeHandler('add-item', onAdd);
     viewer.world.removeHandler('remove-item', onRemove);
+    attachments.delete(viewer);
+    if (host.isDestroyed()) {
+      return; // the page destroyed its viewer first: nothing to give back
+    }
     if (hostCacheCount !== undefined) {
       relightDrawerOf(viewer).setTileCacheCount(hostCacheCount);
     }
@@ -120,7 +113,7 @@ export function attachLanterna(viewer: OpenSeadragon.Viewer, options: AttachLant
     }
     hidden.clear();
     for (const type of restoreCandidates(previous)) {
-      if (host.requestDrawer?.call(viewer, type, { mainDrawer: true }) !== false) {
+      if (host.requestDrawer.call(viewer, type, { mainDrawer: true }) !== false) {
         break;
       }
     }

@@ -42,13 +42,15 @@ const BUTTON_IMAGES = import.meta.glob('../../../node_modules/openseadragon/buil
 
 /** The `navImages` option for OpenSeadragon's buttons, by button and state, from {@link BUTTON_IMAGES}. */
 function navImages(): Record<string, Record<string, string>> {
-  const url = (name: string): string => Object.entries(BUTTON_IMAGES).find(([path]) => path.endsWith(`/${name}.png`))?.[1] ?? '';
+  const url = (name: string): string =>
+    Object.entries(BUTTON_IMAGES).find(([path]) => path.endsWith(`/${name}.png`))?.[1] ?? '';
   const buttons: Record<string, string> = {
     zoomIn: 'zoomin', zoomOut: 'zoomout', home: 'home', fullpage: 'fullpage', rotateleft: 'rotateleft',
     rotateright: 'rotateright', flip: 'flip', previous: 'previous', next: 'next',
   };
   return Object.fromEntries(Object.entries(buttons).map(([button, file]) => [button, {
-    REST: url(`${file}_rest`), GROUP: url(`${file}_grouphover`), HOVER: url(`${file}_hover`), DOWN: url(`${file}_pressed`),
+    REST: url(`${file}_rest`), GROUP: url(`${file}_grouphover`), HOVER: url(`${file}_hover`),
+    DOWN: url(`${file}_pressed`),
   }]));
 }
 
