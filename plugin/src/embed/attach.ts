@@ -62,7 +62,8 @@ export function attachLanterna(viewer: OpenSeadragon.Viewer, options: AttachLant
   before?.stop();
   const previous = (viewer.drawer as { getType?: () => string } | null)?.getType?.() ?? null;
   const hostCacheCount = host.maxImageCacheCount;
-  if (host.requestDrawer.call(viewer, RelightDrawer, { mainDrawer: true }) === false) {
+  // Its own (empty) drawer options, not the page's `drawerOptions.custom` (meant for another drawer).
+  if (host.requestDrawer.call(viewer, RelightDrawer, { mainDrawer: true, drawerOptions: {} }) === false) {
     throw new WebGLUnavailableError('the Lanterna drawer could not start on this viewer (WebGL2)');
   }
 

@@ -6,7 +6,7 @@
 
 /** The members of an OpenSeadragon 6 viewer attaching needs (typed locally: the shipped types lack some). */
 export interface HostViewer {
-  requestDrawer?: (candidate: unknown, options?: { mainDrawer?: boolean }) => unknown;
+  requestDrawer?: (candidate: unknown, options?: { mainDrawer?: boolean; drawerOptions?: object }) => unknown;
   isDestroyed?: () => boolean;
   /** The viewer's `maxImageCacheCount` option (its tile cache's size). */
   maxImageCacheCount?: number;
