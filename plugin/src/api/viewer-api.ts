@@ -232,8 +232,9 @@ export interface LanternaViewer extends ViewStateApi {
    */
   capturePreset(target: PresetTarget, label: string, withView?: boolean): Preset;
   /**
-   * Remove the viewer and free its GL resources. On a viewer given to `attachLanterna`: remove Lanterna's
-   * items, handlers and widgets and give the page's viewer back its own drawer (docs/embedding.md).
+   * Remove the viewer and free its GL resources. On a viewer given to `attachLanterna`: remove
+   * Lanterna's items, handlers and widgets and give the page's viewer back a standard drawer
+   * (docs/embedding.md).
    */
   destroy(): void;
 }

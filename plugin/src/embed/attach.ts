@@ -118,7 +118,7 @@ export function attachLanterna(viewer: OpenSeadragon.Viewer, options: AttachLant
         break;
       }
     }
-    // Items still opening when destroy() came are removed as they arrive, until Lanterna is attached again.
+    // Items still opening when destroy() came are removed as they arrive, until Lanterna comes again.
     const sweep = (event: ItemEvent): void => {
       if (isLanternaItem(event.item)) {
         viewer.world.removeItem(event.item);

@@ -59,9 +59,9 @@ export function createViewer(options: CreateViewerOptions): LanternaViewer {
 
 /** What {@link wireViewer} needs besides the viewer options. */
 export interface ViewerHost {
-  /** The OpenSeadragon options the viewer was made with (createViewer's `osd`): its own tile cache size wins. */
+  /** The OpenSeadragon options the viewer was made with (createViewer's `osd`): a tile cache size there wins. */
   readonly osd?: Partial<OpenSeadragon.Options>;
-  /** Called last by `destroy()`: destroy the viewer (createViewer) or give it back to its page (attachLanterna). */
+  /** Called last by `destroy()`: destroy the viewer (createViewer), or give it back to its page (attachLanterna). */
   readonly release: () => void;
 }
 
@@ -70,7 +70,8 @@ export interface ViewerHost {
  * layer slots, lens, overlays, annotations, light widget, notices and interaction, and the returned
  * API. The one wiring of {@link createViewer} and `attachLanterna` (`embed/attach.ts`).
  */
-export function wireViewer(viewer: OpenSeadragon.Viewer, options: AttachLanternaOptions, host: ViewerHost): LanternaViewer {
+export function wireViewer(viewer: OpenSeadragon.Viewer, options: AttachLanternaOptions,
+  host: ViewerHost): LanternaViewer {
   let dragMode: DragMode = options.mode ?? 'light';
   // Raw (lu, lv) numbers become a Light (clamped) here and in setLight only; the widget and the
   // pointer hand over Lights already made by lightFromPointer or nudgeLight.
