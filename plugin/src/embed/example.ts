@@ -73,7 +73,9 @@ function attach(url: string): void {
   const lanterna = attachLanterna(hostViewer, { manifest: url, mode: 'pan' });
   window.lanterna = lanterna;
   lanterna.ready.catch((error: unknown) => {
-    say(error instanceof Error ? error.message : String(error));
+    if (window.lanterna === lanterna) { // not one destroyed since
+      say(error instanceof Error ? error.message : String(error));
+    }
   });
 }
 

@@ -221,6 +221,10 @@ export function wireViewer(viewer: OpenSeadragon.Viewer, options: AttachLanterna
     }
     applyLight(light);
   })().catch((error: unknown) => {
+    if (destroyed) {
+      // Whatever failed: destroy() took the viewer (or its drawer) away while it was opening.
+      throw new LanternaError('the viewer was destroyed before it was ready', { cause: error });
+    }
     // Always a LanternaError, whatever failed underneath (OpenSeadragon, the browser).
     throw error instanceof LanternaError ? error
       : new LanternaError(`cannot open the viewer: ${error instanceof Error ? error.message : String(error)}`,

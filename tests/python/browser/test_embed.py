@@ -12,6 +12,7 @@ from __future__ import annotations
 
 import base64
 from collections.abc import Iterator
+from pathlib import Path
 from typing import Any
 from urllib.parse import quote
 
@@ -216,3 +217,41 @@ def test_attaching_again_relights_as_before(run: dict[str, Any]) -> None:
     assert run["reattached"]["drawer"] == "lanterna"
     assert run["reattached"]["items"] == [["page", 0], ["BundleTileSource", 1]]
     assert_matches(frame(run["frame2"]), reference(run, LIGHTS[1]), "attached again")
+
+
+def test_destroy_before_ready_leaves_the_page_its_viewer(tmp_path: Path) -> None:
+    """Attached and destroyed in one go (the manifest not fetched yet): ``ready`` says so in one
+    line and the page's viewer is as before."""
+    root = tmp_path / "root"
+    with DatasetWriter(root / "obj", name="obj", label="Random PTM", width=W, height=H) as ds:
+        add_ptm_layer(ds, smooth_random_ptm("lrgb", seed=3))
+    # off, on and off again in one task: the new viewer is destroyed before anything could load
+    toggle = """async () => {
+      await window.lanterna.ready;
+      const button = document.getElementById('toggle');
+      button.click();
+      button.click();
+      const quick = window.lanterna;
+      button.click();
+      const error = await quick.ready.then(() => null, (e) => [e.name, e.message]);
+      for (let i = 0; i < 3; i++) {
+        await new Promise((resolve) => { requestAnimationFrame(resolve); });
+      }
+      return [error, document.getElementById('status').hidden];
+    }"""
+    with lanterna_serve(root) as (url, _):
+        page = (f"{url}/viewer/embed.html?manifest={quote(url + '/datasets/obj/manifest.json')}"
+                f"&image={quote(host_image_url(), safe='')}")
+        values = run_page(page, [
+            {"waitFor": "() => window.lanterna && window.hostViewer"},
+            evaluate(toggle), evaluate(STATE), evaluate(HOST_PIXEL),
+        ], tmp_path / "page", viewport=VIEW, routes=(), settle=False)["values"]
+    error, status_hidden = values[1]
+    assert error == ["LanternaError", "the viewer was destroyed before it was ready"]
+    assert status_hidden is True  # the page does not report a viewer it destroyed itself
+    state = values[2]
+    assert state["items"] == [["page", 1]]
+    assert state["navigatorItems"] == 1
+    assert state["lanternaElements"] == 0
+    assert state["drawer"] in ("webgl", "canvas")
+    assert np.abs(np.array(values[3][:3]) - np.array(HOST_RGB)).max() <= TOLERANCE
