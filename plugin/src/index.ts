@@ -4,8 +4,10 @@
  * @packageDocumentation
  */
 export { createViewer } from './viewer/viewer';
+export { attachLanterna } from './embed/attach';
 export {
-  RenderModeError, UnknownLayerError, type CreateViewerOptions, type LanternaViewer, type LayerInfo,
+  RenderModeError, UnknownLayerError, type AttachLanternaOptions, type CreateViewerOptions, type LanternaViewer,
+  type LayerInfo,
 } from './api/viewer-api';
 export { RelightDrawer, RELIGHT_DRAWER_TYPE, WebGLUnavailableError, type PixelData } from './drawer/relight-drawer';
 export { FloatTargetsUnavailableError } from './drawer/screen-filter';

@@ -41,8 +41,10 @@ const ALLOWED: Readonly<Record<string, readonly string[]>> = {
   tools: ['errors', 'math', 'render', 'lens', 'state', 'api'],
   // The Annotate toolbox: the patch frame, strokes and uploads, on the viewer API and the panel's authoring URLs/token.
   annotate: ['errors', 'api', 'panel'],
+  // attachLanterna: createViewer's wiring on a page's own OpenSeadragon viewer, and its example page.
+  embed: ['errors', 'tiles', 'overlay', 'drawer', 'api', 'viewer'],
   index: ['errors', 'math', 'iiif', 'render', 'gl', 'layers', 'tiles', 'lens', 'ui', 'overlay', 'drawer', 'api',
-    'panel', 'viewer', 'presets', 'state', 'measure', 'tools', 'annotations', 'annotate'],
+    'panel', 'viewer', 'presets', 'state', 'measure', 'tools', 'annotations', 'annotate', 'embed'],
   demo: ['index'],
   simple: ['index'],
   // The Mirador 4 plugins (a separate entry, `@lanterna/plugin/mirador`): our viewer and its API in a Mirador window.
@@ -52,7 +54,7 @@ const ALLOWED: Readonly<Record<string, readonly string[]>> = {
 
 /** The packages a part may import. */
 const PACKAGES: Readonly<Record<string, readonly string[]>> = {
-  openseadragon: ['tiles', 'lens', 'overlay', 'ui', 'drawer', 'api', 'viewer', 'measure', 'tools'],
+  openseadragon: ['tiles', 'lens', 'overlay', 'ui', 'drawer', 'api', 'viewer', 'measure', 'tools', 'embed'],
   'twgl.js': ['gl', 'layers', 'drawer'],
   mirador: ['mirador'],
   react: ['mirador'],
@@ -62,7 +64,7 @@ const PACKAGES: Readonly<Record<string, readonly string[]>> = {
 const PURE = ['errors', 'math', 'iiif', 'render', 'presets', 'state', 'annotations'];
 /** Pure files in folders that also hold DOM code. */
 const PURE_FILES = ['annotate/patch-frame.ts', 'annotate/patch-name.ts', 'annotate/stroke-history.ts',
-  'annotate/pen-width.ts', 'annotate/build-status.ts'];
+  'annotate/pen-width.ts', 'annotate/build-status.ts', 'embed/host-check.ts', 'embed/host-drawer.ts'];
 const DOM_OR_GL = new RegExp('\\b(document|window|navigator|requestAnimationFrame|createImageBitmap|OffscreenCanvas'
   + '|HTML\\w*Element|WebGL\\w*)\\b');
 

@@ -66,6 +66,13 @@ export interface CreateViewerOptions {
   presets?: string | object;
 }
 
+/**
+ * Options of `attachLanterna` (a Lanterna viewer on an OpenSeadragon viewer the page already made,
+ * docs/embedding.md): those of {@link createViewer} but the element and the OpenSeadragon options,
+ * which are the page's.
+ */
+export type AttachLanternaOptions = Omit<CreateViewerOptions, 'element' | 'osd'>;
+
 /** What a notice is about. */
 export type NoticeKind = 'context-lost' | 'tiles-failed' | 'error';
 
@@ -224,6 +231,10 @@ export interface LanternaViewer extends ViewStateApi {
    * (layer, mode, parameters) as a preset named `label` (not added to the library).
    */
   capturePreset(target: PresetTarget, label: string, withView?: boolean): Preset;
-  /** Remove the viewer and free its GL resources. */
+  /**
+   * Remove the viewer and free its GL resources. On a viewer given to `attachLanterna`: remove
+   * Lanterna's items, handlers and widgets and give the page's viewer back a standard drawer
+   * (docs/embedding.md).
+   */
   destroy(): void;
 }

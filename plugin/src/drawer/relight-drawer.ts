@@ -287,12 +287,14 @@ export class RelightDrawer extends OpenSeadragon.DrawerBase implements Composito
    * `getTilesToDraw()` once per item. Uploads the frame's new tile textures (within a budget
    * unless the scene changed) and renders the relit frame only if it is due: never again for an
    * unchanged frame, and while tiles load not more often than the GPU can afford (frame-schedule.ts).
+   * Items that are not Lanterna's (not given to setLayer, setLensItem or setOverlayItem: a page's own
+   * images, `attachLanterna`) are left out: their tiles have no plane bundles to draw.
    */
   draw(tiledImages: object[]): void {
     this.lastFrame = (tiledImages as TiledImageLike[]).map((item) => ({
       item,
       tiles: item.getTilesToDraw().map((info) => info.tile),
-    }));
+    })).filter(({ item }) => this.layers.has(item) || this.roles.has(item));
     if (this.destroyed || this.gl.isContextLost() || !this.frames) {
       return;
     }

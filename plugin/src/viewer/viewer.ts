@@ -8,7 +8,9 @@
  * the parameters.
  */
 import type OpenSeadragon from 'openseadragon';
-import { RenderModeError, type CreateViewerOptions, type LanternaViewer } from '../api/viewer-api';
+import {
+  RenderModeError, type AttachLanternaOptions, type CreateViewerOptions, type LanternaViewer,
+} from '../api/viewer-api';
 import { LanternaError } from '../errors';
 import { fetchJson, type InfoCache } from '../iiif/load';
 import { parseManifest, type ManifestInfo } from '../iiif/manifest';
@@ -51,6 +53,25 @@ export function createViewer(options: CreateViewerOptions): LanternaViewer {
   if (!element) {
     throw new LanternaError(`viewer element #${options.element as string} not found`);
   }
+  const viewer = createOsdViewer(element, options.osd);
+  return wireViewer(viewer, options, { osd: options.osd, release: () => { viewer.destroy(); } });
+}
+
+/** What {@link wireViewer} needs besides the viewer options. */
+export interface ViewerHost {
+  /** The OpenSeadragon options the viewer was made with (createViewer's `osd`): a tile cache size there wins. */
+  readonly osd?: Partial<OpenSeadragon.Options>;
+  /** Called last by `destroy()`: destroy the viewer (createViewer), or give it back to its page (attachLanterna). */
+  readonly release: () => void;
+}
+
+/**
+ * Wire a Lanterna viewer onto an OpenSeadragon viewer whose drawer is the {@link RelightDrawer}: the
+ * layer slots, lens, overlays, annotations, light widget, notices and interaction, and the returned
+ * API. The one wiring of {@link createViewer} and `attachLanterna` (`embed/attach.ts`).
+ */
+export function wireViewer(viewer: OpenSeadragon.Viewer, options: AttachLanternaOptions,
+  host: ViewerHost): LanternaViewer {
   let dragMode: DragMode = options.mode ?? 'light';
   // Raw (lu, lv) numbers become a Light (clamped) here and in setLight only; the widget and the
   // pointer hand over Lights already made by lightFromPointer or nudgeLight.
@@ -60,12 +81,11 @@ export function createViewer(options: CreateViewerOptions): LanternaViewer {
   let manifest: ManifestInfo | null = null;
   let library: PresetLibrary = emptyLibrary();
   let active: LayerSlot | null = null;
-  const initial = initialLens(element.clientWidth || 640, element.clientHeight || 480);
+  const initial = initialLens(viewer.element.clientWidth || 640, viewer.element.clientHeight || 480);
   const infoCache: InfoCache = new Map();
   const listeners = new Set<() => void>();
   let destroyed = false;
 
-  const viewer = createOsdViewer(element, options.osd);
   const drawer = () => relightDrawerOf(viewer);
 
   const notify = (): void => {
@@ -185,7 +205,7 @@ export function createViewer(options: CreateViewerOptions): LanternaViewer {
     library = opened.library;
     const parsed = selectLayers(whole, options.layers, library);
     manifest = parsed;
-    sizeTileCache(viewer, Math.max(...parsed.layers.map((l) => l.layer.planes.length)), options.osd);
+    sizeTileCache(viewer, Math.max(...parsed.layers.map((l) => l.layer.planes.length)), host.osd);
     slots.add(parsed.layers);
     // A page that cannot be read leaves the list empty, with a notice; the overlays still show.
     const patches = await fetchPatches(doc, parsed.layers.map((l) => l.id), options.fetchInit)
@@ -201,6 +221,10 @@ export function createViewer(options: CreateViewerOptions): LanternaViewer {
     }
     applyLight(light);
   })().catch((error: unknown) => {
+    if (destroyed) {
+      // Whatever failed: destroy() took the viewer (or its drawer) away while it was opening.
+      throw new LanternaError('the viewer was destroyed before it was ready', { cause: error });
+    }
     // Always a LanternaError, whatever failed underneath (OpenSeadragon, the browser).
     throw error instanceof LanternaError ? error
       : new LanternaError(`cannot open the viewer: ${error instanceof Error ? error.message : String(error)}`,
@@ -364,7 +388,9 @@ export function createViewer(options: CreateViewerOptions): LanternaViewer {
       overlays.destroy();
       notices.destroy();
       widget?.destroy();
-      viewer.destroy();
+      viewer.removeHandler('viewport-change', sync);
+      viewer.removeHandler('update-viewport', sync);
+      host.release();
     },
   };
   return api;

@@ -105,6 +105,7 @@ EXPECTED_EXPORTS = {
     "PARAM_SPECS", "relevantParams", "createControls", "createLensControls", "createHypertext",
     "sanitizeHtml", "routeGesture", "LanternaError", "ManifestError", "FetchError",
     "RenderModeError", "UnknownLayerError", "ShaderError", "FloatTargetsUnavailableError",
+    "attachLanterna",
 }
 
 
