@@ -2,8 +2,9 @@
 
 from __future__ import annotations
 
-from collections.abc import Sequence
+from collections.abc import Mapping, Sequence
 from pathlib import Path
+from typing import Any
 
 from lanterna.errors import LanternaInputError
 from lanterna.tiler.dataset.plan import LayerPlan, build_dataset
@@ -20,7 +21,9 @@ def import_sources(sources: Sequence[Path], out: Path, *, name: str | None = Non
                    label: str | None = None, bands: dict[str, Path] | None = None,
                    fusions: Sequence[Sequence[str]] = (), base_url: str = DEFAULT_BASE_URL,
                    tile_size: int = 256, force: bool = False, tiff: bool = False,
-                   plane_format: PlaneFormat = AUTO, pixel_size_mm: float | None = None) -> Path:
+                   plane_format: PlaneFormat = AUTO, pixel_size_mm: float | None = None,
+                   summary: str | None = None,
+                   publication: Mapping[str, Any] | None = None) -> Path:
     """Import sources as the layers of dataset ``out`` (in order; the first is the default).
 
     A source is a ``.ptm``, ``.rti``, a Relight web-format folder (any layout), an OpenLIME
@@ -31,9 +34,12 @@ def import_sources(sources: Sequence[Path], out: Path, *, name: str | None = Non
     ``plane_format`` (``--plane-format``) is the tile format of relightable layers' planes
     (:mod:`lanterna.tiler.dataset.plane_format`). ``pixel_size_mm`` (``--pixel-size``) is the
     physical size of a pixel; without it, a Relight source's ``pixelSizeInMM`` is used.
+    ``summary`` and ``publication`` (rights, attribution, provider, links, metadata:
+    :mod:`lanterna.manifests.metadata`) come from the options; a description file's own
+    fields fill in the ones not given, field by field.
     """
     plans: list[LayerPlan] = []
-    fields: dict[str, str] = {}
+    fields: dict[str, Any] = {}
     for source in sources:
         source = Path(source)
         if source.suffix.lower() == ".json" and source.is_file():
@@ -55,8 +61,10 @@ def import_sources(sources: Sequence[Path], out: Path, *, name: str | None = Non
                                "dataset name")
     ds_label = label or fields.get("label") or first.stem
     return build_dataset(plans, out, name=ds_name, label=ds_label, base_url=base_url,
-                         tile_size=tile_size, force=force, summary=fields.get("summary"),
-                         tiff=tiff, pixel_size_mm=pixel_size_mm)
+                         tile_size=tile_size, force=force,
+                         summary=summary or fields.get("summary"), tiff=tiff,
+                         pixel_size_mm=pixel_size_mm,
+                         publication={**fields.get("publication", {}), **(publication or {})})
 
 
 def _safe_name(stem: str) -> str:
