@@ -91,7 +91,10 @@ def parse_provider(text: str) -> dict[str, str]:
     urls: list[str] = []
     while len(parts) > 1 and parts[-1].strip().lower().startswith("http") and len(urls) < 2:
         urls.insert(0, parts.pop().strip())
-    provider = {"label": check_text(",".join(parts).strip())}
+    name = ",".join(parts).strip()
+    if re.match(URL_PATTERN, name):
+        raise ValueError(f"wants NAME[,URL[,LOGO_URL]] with the name first, got {text!r}")
+    provider = {"label": check_text(name)}
     for key, url in zip(("homepage", "logo"), urls, strict=False):
         provider[key] = check_url(url)
     return provider
