@@ -199,7 +199,7 @@ def publication_properties(desc: Mapping[str, Any], infos: Mapping[str, dict[str
     given pairs; ``rights``, ``requiredStatement`` (label "Attribution"), ``provider`` (one
     ``Agent``), ``homepage`` and ``seeAlso`` when given.
     """
-    pub = check_publication(desc.get("publication"))
+    pub = check_publication(desc.get("publication"), "lanterna.json: publication")
     out: dict[str, Any] = {}
     bands = [layer["service"]["wavelength"] for layer in desc["layers"]
              if "wavelength" in layer["service"]]  # spectral band layers (docs/importing.md)

@@ -144,3 +144,9 @@ def test_metadata_option_form() -> None:
         "label": "Find spot", "value": "Oxyrhynchus, Egypt"}
     with pytest.raises(ValueError, match="LABEL=VALUE"):
         md.parse_metadata("no pair")
+
+
+def test_a_bad_stored_publication_names_lanterna_json(kinds: dict[str, Path]) -> None:
+    desc, infos = described(kinds["images"], {"rights": "CC-BY"})
+    with pytest.raises(LanternaInputError, match=r"lanterna.json: publication.rights: not a"):
+        build_manifest(desc, infos)
