@@ -37,6 +37,7 @@ from lanterna.errors import LanternaInputError
 
 from .annotation_page import page_references
 from .extensions import physdim_service, presets_service
+from .lightingmap import add_lighting_maps
 from .metadata import publication_properties
 from .overlays import overlay_pages
 from .services import image_service, with_plane_descriptions
@@ -83,6 +84,7 @@ def build_manifest(desc: dict[str, Any],
                              body=Choice(items=bodies), target=canvas.id))
     canvas.add_item(page)
     doc: dict[str, Any] = json.loads(manifest.json(indent=2))
+    add_lighting_maps(doc, desc, infos)  # ARCHiOx's albedo + normal items (lightingmap.py)
     pages = [*overlay_pages(desc, infos), *page_references(desc)]
     if pages:
         doc["items"][0]["annotations"] = pages

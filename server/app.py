@@ -152,12 +152,31 @@ def _json_response(root: Path, target: Path) -> BaseResponse:
     return resp.make_conditional(request)
 
 
+#: ``lanterna.json`` path → ((inode, size, mtime), its ``baseUrl``): the description is parsed once
+#: per version, not on every JSON request (it holds whole PCA bases, ~80 KB for the demo).
+_BASES: dict[Path, tuple[tuple[int, int, int], str | None]] = {}
+_MAX_BASES = 1024
+
+
 def _recorded_base(dataset_dir: Path) -> str | None:
+    path = dataset_dir / "lanterna.json"
     try:
-        base = json.loads((dataset_dir / "lanterna.json").read_text())["baseUrl"]
-    except (OSError, ValueError, KeyError, TypeError):
+        real = path.resolve()
+        st = real.stat()
+    except OSError:
         return None
-    return str(base).rstrip("/")
+    stamp = (st.st_ino, st.st_size, st.st_mtime_ns)
+    cached = _BASES.get(real)
+    if cached is not None and cached[0] == stamp:
+        return cached[1]
+    try:
+        base: str | None = str(json.loads(real.read_text())["baseUrl"]).rstrip("/")
+    except (OSError, ValueError, KeyError, TypeError):
+        base = None
+    if len(_BASES) >= _MAX_BASES:
+        _BASES.clear()
+    _BASES[real] = (stamp, base)
+    return base
 
 
 def _index_html(root: Path) -> str:

@@ -31,6 +31,10 @@ IMPORT_EXAMPLES = """examples:
       PNG plane tiles (default auto: chosen by source, docs/dataset-format.md)
   lanterna import tablet.ptm --pixel-size 0.05 -o datasets/tablet
       one pixel is 0.05 mm on the object: the viewers show a scale bar
+  lanterna import https://example.org/iiif/object/manifest.json -o datasets/obj
+      an ARCHiOx-style manifest (URL or .json file): its albedo + normal map as one layer
+  lanterna import --albedo albedo.png --normal normals.png -o datasets/obj
+      a local albedo + normal map pair as one shape + material layer
 
 Every source type and the description file: docs/importing.md.
 """
@@ -40,9 +44,18 @@ def register(sub: SubParsers) -> None:
     imp = sub.add_parser("import", help="import sources as the layers of one dataset",
                          epilog=IMPORT_EXAMPLES,
                          formatter_class=argparse.RawDescriptionHelpFormatter)
-    imp.add_argument("sources", type=Path, nargs="*", metavar="SOURCE",
-                     help=".ptm, .rti, a Relight folder, an image, or a description .json; "
-                          "several sources become several layers (the first is the default)")
+    imp.add_argument("sources", nargs="*", metavar="SOURCE",
+                     help=".ptm, .rti, a Relight folder, an image, a description .json, or an "
+                          "ARCHiOx-style IIIF manifest (.json or http(s) URL); several sources "
+                          "become several layers (the first is the default)")
+    imp.add_argument("--albedo", type=Path, metavar="FILE",
+                     help="an albedo (sRGB colour) map: with --normal, one shape + material "
+                          "layer (Lambert), after the sources")
+    imp.add_argument("--normal", type=Path, metavar="FILE",
+                     help="the normal map of --albedo (RGB = (n + 1)/2, 8 or 16 bits)")
+    imp.add_argument("--normal-convention", choices=("opengl", "directx"), default="opengl",
+                     help="the normal map's y axis: opengl (y up, the default) or directx "
+                          "(y down)")
     imp.add_argument("--band", action="append", default=[], metavar="NAME=FILE",
                      help="a spectral band (single-band image) shown as a grey layer; repeatable")
     imp.add_argument("--fusion", action="append", default=[], metavar="A,B,C",
@@ -53,6 +66,7 @@ def register(sub: SubParsers) -> None:
 
 def run(args: argparse.Namespace) -> int:
     from lanterna.tiler.dataset.plane_format import parse_plane_format
+    from lanterna.tiler.ingest.archiox import plan_map_pair
     from lanterna.tiler.ingest.importer import import_sources
 
     check_tile_size(args.tile_size)
@@ -64,10 +78,17 @@ def run(args: argparse.Namespace) -> int:
             raise LanternaInputError(None, f"--band wants NAME=FILE, got {item!r}")
         bands[band] = Path(file)
     fusions = [tuple(part.strip() for part in f.split(",")) for f in args.fusion]
-    if not args.sources and not bands:
-        raise LanternaInputError(None, "nothing to import: give a SOURCE or --band NAME=FILE")
+    if (args.albedo is None) != (args.normal is None):
+        raise LanternaInputError(None, "--albedo and --normal go together (one map pair)")
+    if not args.sources and not bands and args.albedo is None:
+        raise LanternaInputError(None, "nothing to import: give a SOURCE, --band NAME=FILE or "
+                                 "--albedo FILE --normal FILE")
+    pair = [] if args.albedo is None else [plan_map_pair(
+        args.albedo, args.normal, normal_convention=args.normal_convention,
+        plane_format=plane_format)]
     with annotations_set_aside(args.output, args.force):
-        out = import_sources(args.sources, args.output, name=args.name, label=args.label,
+        out = import_sources(args.sources, args.output, extra_plans=pair, name=args.name,
+                             label=args.label,
                              bands=bands, fusions=fusions, base_url=args.base_url,
                              tile_size=args.tile_size, force=args.force, tiff=args.tiff,
                              plane_format=plane_format, pixel_size_mm=args.pixel_size,

@@ -60,8 +60,8 @@ def _kind(service: Mapping[str, Any]) -> str:
     planes = service.get("planes", [])
     if kind == "ptm":
         return f"PTM {str(service.get('colorspace', '')).upper()}".rstrip()
-    if kind == "hsh":
-        return f"HSH {service.get('terms')} terms"
+    if kind in ("hsh", "sh"):
+        return f"{kind.upper()} {service.get('terms')} terms"
     if kind in ("rbf", "bilinear"):
         return f"{kind.upper()} {str(service.get('colorspace', '')).upper()} " \
                f"{service.get('nplanes')} planes"

@@ -56,7 +56,7 @@ class PlaneGroup:
 
 @dataclass(frozen=True)
 class PlaneLayer:
-    """A layer as plane groups (``layer_type`` ``ptm``, ``hsh``, ``svbrdf``, ``rbf``, ``bilinear``).
+    """A layer as plane groups (``layer_type`` ptm, hsh, sh, svbrdf, rbf or bilinear).
 
     ``group_names`` name the stored images (``{layer_id}_{name}``; default ``p0, p1, …``);
     ``extra`` carries svbrdf's ``glossLimits``/``inputColorSpace`` and readers' provenance notes;
@@ -88,7 +88,7 @@ class PlaneLayer:
         """The type-specific fields of the layer's relight service block."""
         if self.layer_type == "ptm":
             return {"colorspace": self.colorspace, "basis": list(PTM_BASIS)}
-        if self.layer_type == "hsh":
+        if self.layer_type in ("hsh", "sh"):
             return {"terms": self.terms}
         if self.layer_type == "svbrdf":
             return {k: self.extra[k] for k in ("glossLimits", "inputColorSpace") if k in self.extra}

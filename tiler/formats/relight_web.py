@@ -14,12 +14,13 @@ Format (Relight ``src/rti.cpp`` ``Rti::load``/``loadData``, ``src/cli/rtibuilder
   ``lrgb``: planes 0–2 are the base colour (scale 1, bias 0), planes ``3 + t`` luminance term
   ``t`` (6 or 9 planes); colour = base · L.
 - ``hsh``: planes ``3k + c`` are term ``k`` of colour ``c`` (``rgb`` only; 4, 9 or 16 terms).
+- ``sh``: plain real spherical harmonics (:mod:`.sh_model`), laid out as ``hsh`` (4 or 9 terms).
 
 The reader regroups the planes into Lanterna's channel names and order (docs/dataset-format.md):
 PTM ``L0…L5`` / ``R0…R5, G0…G5, B0…B5`` in the basis ``lu², lv², lu·lv, lu, lv, 1`` (a degree-1
-PTM gets zero quadratic channels), HSH one group ``R{k}, G{k}, B{k}`` per term.
+PTM gets zero quadratic channels), HSH and SH one group ``R{k}, G{k}, B{k}`` per term.
 
-- ``ycc`` (``ptm``, ``hsh``): converted exactly into ``rgb`` planes (:mod:`.relight_ycc`).
+- ``ycc`` (``ptm``, ``hsh``, ``sh``): converted exactly into ``rgb`` planes (:mod:`.relight_ycc`).
 - ``rbf`` / ``bilinear`` with ``mrgb`` / ``mycc``: a PCA basis (:mod:`.relight_pca`); the planes
   are kept as they are, groups ``P0 P1 P2``, … (``nplanes`` need not be a multiple of 3).
 """
@@ -49,12 +50,13 @@ from .relight_ycc import ycc_as_rgb
 PTM_TERM_OF = (3, 5, 4, 1, 2, 0)
 #: Accepted ``nplanes`` per (type, colorspace) of the fixed bases (PCA bases: 1 to 48).
 NPLANES = {("ptm", "lrgb"): (6, 9), ("ptm", "rgb"): (9, 18), ("ptm", "ycc"): (9, 18),
-           ("hsh", "rgb"): (12, 27, 48), ("hsh", "ycc"): (12, 27, 48)}
+           ("hsh", "rgb"): (12, 27, 48), ("hsh", "ycc"): (12, 27, 48),
+           ("sh", "rgb"): (12, 27), ("sh", "ycc"): (12, 27)}
 #: The colour spaces of each supported type.
-COLORSPACES = {"ptm": ("rgb", "lrgb", "ycc"), "hsh": ("rgb", "ycc"),
+COLORSPACES = {"ptm": ("rgb", "lrgb", "ycc"), "hsh": ("rgb", "ycc"), "sh": ("rgb", "ycc"),
                "rbf": ("mrgb", "mycc"), "bilinear": ("mrgb", "mycc")}
 #: Types Relight or OpenLIME know that Lanterna does not read, and why.
-_OTHER_TYPES = {"sh": "plain spherical harmonics", "h": "Relight's experimental H-basis",
+_OTHER_TYPES = {"h": "Relight's experimental H-basis",
                 "dmd": "Relight's unfinished DMD basis", "bln": "OpenLIME's shader name; the "
                 "info.json type is 'bilinear'", "neural": "a neural RTI", "img": "an image set"}
 _SUPPORTED = ", ".join(COLORSPACES)
@@ -62,17 +64,18 @@ _ALL_COLORSPACES = ("rgb", "lrgb", "ycc", "mrgb", "mycc")
 
 
 def read_relight(folder: str | Path) -> PlaneLayer:
-    """Read a Relight web-format folder (or its ``info.json``): ptm, hsh, rbf or bilinear.
+    """Read a Relight web-format folder (or its ``info.json``): ptm, hsh, sh, rbf or bilinear.
 
     Returns
     -------
     PlaneLayer
         ``layer_type`` ``"ptm"`` (``colorspace`` ``"lrgb"`` or ``"rgb"``; ``ycc`` is converted
-        to ``rgb``) or ``"hsh"`` (``terms`` 4, 9 or 16), groups in Lanterna's channel order with
-        the folder's bytes and per-channel scale/bias; or ``"rbf"`` / ``"bilinear"``
-        (``colorspace`` ``"mrgb"`` or ``"mycc"``) with groups ``P0 P1 P2``, … and the basis in
-        ``pca``. ``extra`` records the source ``nplanes`` and ``quality``, and
-        ``pixelSizeMM`` when info.json states ``pixelSizeInMM`` (the physical size of a pixel).
+        to ``rgb``), ``"hsh"`` (``terms`` 4, 9 or 16) or ``"sh"`` (``terms`` 4 or 9), groups
+        in Lanterna's channel order with the folder's bytes and per-channel scale/bias; or
+        ``"rbf"`` / ``"bilinear"`` (``colorspace`` ``"mrgb"`` or ``"mycc"``) with groups
+        ``P0 P1 P2``, … and the basis in ``pca``. ``extra`` records the source ``nplanes`` and
+        ``quality``, and ``pixelSizeMM`` when info.json states ``pixelSizeInMM`` (the physical
+        size of a pixel).
 
     Raises
     ------
@@ -112,12 +115,12 @@ def read_relight(folder: str | Path) -> PlaneLayer:
         planes, scale, bias = ycc_as_rgb(rtype, planes, scale, bias)
         colorspace = "rgb"
         extra["sourceColorspace"] = "ycc"
-    if rtype == "hsh":
+    if rtype in ("hsh", "sh"):
         rgb = [list(range(3 * k, 3 * k + 3)) for k in range(nplanes // 3)]
         groups = [PlaneGroup([f"R{k}", f"G{k}", f"B{k}"], _stack(planes, rgb[k]),
                              scale[3 * k : 3 * k + 3], bias[3 * k : 3 * k + 3], lossy)
                   for k in range(nplanes // 3)]
-        return PlaneLayer("hsh", groups, None, nplanes // 3, extra)
+        return PlaneLayer(rtype, groups, None, nplanes // 3, extra)
     if colorspace == "lrgb":
         lum = [3 + t for t in PTM_TERM_OF]  # Relight plane of each Lanterna L channel
         groups = [_ptm_group(planes, [f"L{j}" for j in range(g, g + 3)], lum[g : g + 3],

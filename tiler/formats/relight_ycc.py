@@ -1,4 +1,4 @@
-"""Relight's ``colorspace: "ycc"`` for ``ptm`` and ``hsh``, converted exactly into ``rgb`` planes.
+"""Relight's ``colorspace: "ycc"`` for ``ptm``, ``hsh`` and ``sh``, converted exactly into ``rgb``.
 
 Relight ``Rti::render`` (case ``YCC``) relights such a folder as: luma
 ``Y = Σ_t w_t(l)·r[3t]`` (the term-``t`` weight of the basis, ``r[p]`` plane ``p`` dequantised,
@@ -13,8 +13,8 @@ Relight ``Rti::render`` (case ``YCC``) relights such a folder as: luma
 and a constant ``k_c`` (the chroma part above). The equivalent ``rgb`` folder has, for every
 channel ``c``, term ``t ≥ 1`` = plane ``3t`` (bytes, scale and bias unchanged) and term 0 =
 ``r[0] + k_c / w_0`` with ``w_0`` the basis's constant weight (PTM's ``1``, HSH's
-``1/√(2π)``): only those three term-0 planes are requantised (8 bits over their own range), so a
-render differs from Relight's by at most half a step of that range.
+``1/√(2π)``, SH's ``0.282095``): only those three term-0 planes are requantised (8 bits over
+their own range), so a render differs from Relight's by at most half a step of that range.
 """
 
 from __future__ import annotations
@@ -24,8 +24,10 @@ import math
 import numpy as np
 import numpy.typing as npt
 
+from .sh_model import C0 as SH_C0
+
 #: The weight of term 0 of each basis (the constant one).
-CONSTANT_WEIGHT = {"ptm": 1.0, "hsh": 1.0 / math.sqrt(2.0 * math.pi)}
+CONSTANT_WEIGHT = {"ptm": 1.0, "hsh": 1.0 / math.sqrt(2.0 * math.pi), "sh": SH_C0}
 #: ``YCbCrToRgb`` of Relight's ``src/color.h``: rows R, G, B; columns Cb − ½, Cr − ½.
 CHROMA_TO_RGB = np.array([[0.0, 1.402], [-0.344136, -0.714136], [1.772, 0.0]], np.float64)
 

@@ -12,24 +12,27 @@ from lanterna.tiler.dataset.plane_format import AUTO, PlaneFormat
 from lanterna.tiler.dataset.writer import DEFAULT_BASE_URL, check_identifier
 from lanterna.tiler.formats.relight_multispectral import is_multispectral
 
+from .archiox import is_manifest_source, plan_archiox
 from .description import plan_description
 from .multispectral import plan_multispectral
 from .sources import plan_bands, plan_source
 
 
-def import_sources(sources: Sequence[Path], out: Path, *, name: str | None = None,
+def import_sources(sources: Sequence[Path | str], out: Path, *, name: str | None = None,
                    label: str | None = None, bands: dict[str, Path] | None = None,
                    fusions: Sequence[Sequence[str]] = (), base_url: str = DEFAULT_BASE_URL,
                    tile_size: int = 256, force: bool = False, tiff: bool = False,
                    plane_format: PlaneFormat = AUTO, pixel_size_mm: float | None = None,
-                   summary: str | None = None,
+                   extra_plans: Sequence[LayerPlan] = (), summary: str | None = None,
                    publication: Mapping[str, Any] | None = None) -> Path:
     """Import sources as the layers of dataset ``out`` (in order; the first is the default).
 
     A source is a ``.ptm``, ``.rti``, a Relight web-format folder (any layout), an OpenLIME
     multispectral folder (a composite and one layer per band), an image, or a dataset
-    description ``.json`` (Lanterna's or the seed paper's scene format). ``bands`` adds one grey
-    layer per spectral band, ``fusions`` one false-colour layer per band triple. ``tiff`` also
+    description ``.json`` (Lanterna's or the seed paper's scene format), or an ARCHiOx-style IIIF
+    manifest (a ``.json`` file or an http(s) URL; :mod:`.archiox`). ``extra_plans`` (e.g. an
+    albedo + normal pair, :func:`.archiox.plan_map_pair`) follow the sources. ``bands`` adds one
+    grey layer per spectral band, ``fusions`` one false-colour layer per band triple. ``tiff`` also
     writes a pyramidal TIFF per image (``tiff/<image>.tif``) for the IIIF image server.
     ``plane_format`` (``--plane-format``) is the tile format of relightable layers' planes
     (:mod:`lanterna.tiler.dataset.plane_format`). ``pixel_size_mm`` (``--pixel-size``) is the
@@ -40,8 +43,13 @@ def import_sources(sources: Sequence[Path], out: Path, *, name: str | None = Non
     """
     plans: list[LayerPlan] = []
     fields: dict[str, Any] = {}
-    for source in sources:
-        source = Path(source)
+    for given in sources:
+        if is_manifest_source(given):
+            mf_fields, plan = plan_archiox(given, plane_format=plane_format)
+            fields = {**mf_fields, **fields}
+            plans.append(plan)
+            continue
+        source = Path(given)
         if source.suffix.lower() == ".json" and source.is_file():
             desc_fields, desc_plans = plan_description(source, plane_format=plane_format)
             fields = {**desc_fields, **fields}
@@ -52,6 +60,7 @@ def import_sources(sources: Sequence[Path], out: Path, *, name: str | None = Non
             plans.extend(ms_plans)
         else:
             plans.append(plan_source(source, plane_format=plane_format))
+    plans.extend(extra_plans)
     if bands:
         plans.extend(plan_bands(bands, fusions))
     elif fusions:

@@ -46,10 +46,13 @@ def is_lossy_file(path: str | Path) -> bool:
     return Path(path).suffix.lower() in LOSSY_SUFFIXES
 
 
-def _read(path: str | Path, *, allow_float: bool = False) -> npt.NDArray[np.generic]:
-    """Decode ``path`` to ``(H, W, bands)`` uint8/uint16 (or float), alpha dropped."""
-    src = Path(path)
-    data = read_input(src, "an image")
+def _read(path: str | Path, *, allow_float: bool = False,
+          data: bytes | None = None) -> npt.NDArray[np.generic]:
+    """Decode ``path`` (or ``data``, the file's bytes fetched from ``path``, a URL) to
+    ``(H, W, bands)`` uint8/uint16 (or float), alpha dropped."""
+    src = path if data is not None else Path(path)
+    if data is None:
+        data = read_input(Path(src), "an image")
     try:
         image = pyvips.Image.new_from_buffer(data, "", fail_on="warning")
         if image.interpretation == "cmyk":
@@ -88,8 +91,11 @@ def _to_8bit(array: npt.NDArray[np.generic]) -> npt.NDArray[np.uint8]:
     return _to_bytes(_to_unit(array))
 
 
-def load_normal_map(path: str | Path, *, convention: str = "opengl") -> npt.NDArray[np.uint8]:
+def load_normal_map(path: str | Path, *, convention: str = "opengl",
+                    data: bytes | None = None) -> npt.NDArray[np.uint8]:
     """Load a normal map and return it as ``(H, W, 3)`` uint8 in the OpenGL convention.
+
+    ``data``: the encoded file already read (fetched from ``path``, then a URL naming errors).
 
     Each pixel decodes as ``n = 2·v − 1`` (``v`` in 0–1, from 8 or 16 bits), the green channel
     is negated for ``convention="directx"``, and ``n`` is re-normalised before encoding
@@ -108,7 +114,7 @@ def load_normal_map(path: str | Path, *, convention: str = "opengl") -> npt.NDAr
     if convention not in NORMAL_CONVENTIONS:
         raise LanternaInputError(path, f"unknown normal-map convention {convention!r}; "
                                  "expected opengl or directx")
-    raw = _read(path)
+    raw = _read(path, data=data)
     if raw.shape[2] != 3:
         raise LanternaInputError(path, f"normal map has {raw.shape[2]} colour band(s); "
                                  "expected 3 (RGB)")
@@ -141,9 +147,10 @@ def load_normal_map(path: str | Path, *, convention: str = "opengl") -> npt.NDAr
     return out
 
 
-def load_color_map(path: str | Path) -> npt.NDArray[np.uint8]:
-    """Load an RGB (or grey) image as ``(H, W, 3)`` uint8; 16-bit samples are rounded to 8."""
-    raw = _read(path)
+def load_color_map(path: str | Path, *, data: bytes | None = None) -> npt.NDArray[np.uint8]:
+    """Load an RGB (or grey) image as ``(H, W, 3)`` uint8; 16-bit samples are rounded to 8
+    (``data``: the encoded file already read, as for :func:`load_normal_map`)."""
+    raw = _read(path, data=data)
     if raw.shape[2] == 1:
         raw = np.repeat(raw, 3, axis=2)
     elif raw.shape[2] != 3:

@@ -3,13 +3,13 @@ plots for the pixel under the cursor, from that pixel's dequantised channels.
 
 - shape + material layers: the BRDF slice φd = 90° (Rusinkiewicz 1998) of Lambert + Ward,
   :func:`brdf_slice`;
-- PTM and HSH layers: the colour over the whole light hemisphere, as a disk,
-  :func:`reflectance_disk`;
+- relightable layers (PTM, HSH, SH, RBF, bilinear): the colour over the whole light hemisphere,
+  as a disk, :func:`reflectance_disk`;
 - images (and shape + material layers without a normal map): the displayed colour,
   :func:`swatch`.
 
-Each evaluates the renderer's own model functions (:func:`.svbrdf.ward_lobe`,
-:func:`.ptm.ptm_color`, :func:`.hsh.hsh_color`).
+Each evaluates the renderer's own model functions (:func:`.svbrdf.ward_lobe`, the layer's
+:func:`.modes.surface`).
 """
 
 from __future__ import annotations
@@ -21,11 +21,8 @@ from typing import Any
 import numpy as np
 import numpy.typing as npt
 
-from lanterna.tiler.formats.hsh_basis import hsh_weights
-
-from .hsh import hsh_coefficients, hsh_color
-from .ptm import ptm_basis, ptm_coefficients, ptm_color
-from .shading import F32, f32
+from .modes import surface
+from .shading import F32, f32, make_light
 from .svbrdf import image_surface, svbrdf_material, svbrdf_surface, ward_lobe
 
 #: Samples per axis of the plots the viewer shows.
@@ -80,16 +77,23 @@ def disk_lights(size: int = DISK_SIZE) -> tuple[F32, F32, npt.NDArray[np.bool_]]
     return (f32(np.where(inside, lu, 0)), f32(np.where(inside, lv, 0)), inside)
 
 
+#: The layer types a measurement plots as a reflectance disk (the colour over the light hemisphere).
+DISK_TYPES = frozenset({"ptm", "hsh", "sh", "rbf", "bilinear"})
+
+
 def reflectance_disk(layer: Mapping[str, Any], coefficients: Mapping[str, float],
                      size: int = DISK_SIZE, intensity: float = 1.0) -> F32:
-    """The colour mode's unclamped ``c`` of one PTM or HSH pixel for every light of a disk.
+    """The colour mode's unclamped ``c`` of one relightable pixel for every light of a disk.
+
+    The layer's own model (:func:`.modes.surface`: PTM, HSH, SH, RBF, bilinear) evaluated at each
+    disk light, so the disk is by construction what the colour mode shows under that light.
 
     Parameters
     ----------
     layer:
-        The layer's relight service block.
+        The layer's relight service block (a :data:`DISK_TYPES` type).
     coefficients:
-        The pixel's dequantised channels by name (``L0…L5, R, G, B``; ``R0…B5``; ``R0…B{K−1}``).
+        The pixel's dequantised channels by name (``L0…L5, R, G, B``; ``R0…B{K−1}``; ``P0…``).
     size:
         Disk side in pixels (:func:`disk_lights`).
     intensity:
@@ -100,24 +104,16 @@ def reflectance_disk(layer: Mapping[str, Any], coefficients: Mapping[str, float]
     numpy.ndarray
         ``(size, size, 3)`` float32, rows top-down; 0 outside the disk.
     """
-    channels = {k: np.full((1, 1), v, np.float32) for k, v in coefficients.items()}
-    lu, lv, inside = disk_lights(size)
     kind = layer.get("layerType")
-    if kind == "ptm":
-        a = ptm_coefficients(layer, channels)[0, 0]
-        lrgb = layer.get("colorspace") == "lrgb"
-        rgb = np.array([channels[c][0, 0] for c in "RGB"], np.float32) if lrgb else None
-        out = ptm_color(a, rgb, ptm_basis(lu, lv), intensity)
-    elif kind == "hsh":
-        a = hsh_coefficients(layer, channels)[0, 0]
-        terms = a.shape[-1]
-        w = np.stack([np.stack([hsh_weights(float(u), float(v), terms) for u, v in zip(ru, rv,
-                                                                                    strict=True)])
-                      for ru, rv in zip(lu, lv, strict=True)])
-        out = hsh_color(a, w, intensity)
-    else:
-        raise ValueError(f"a reflectance disk needs a ptm or hsh layer, not {kind!r}")
-    return f32(np.where(inside[..., None], out, np.float32(0)))
+    if kind not in DISK_TYPES:
+        raise ValueError(f"a reflectance disk needs a {', '.join(sorted(DISK_TYPES))} layer, "
+                         f"not {kind!r}")
+    model = surface(layer, {k: np.full((1, 1), v, np.float32) for k, v in coefficients.items()})
+    lu, lv, inside = disk_lights(size)
+    out = np.zeros((size, size, 3), np.float32)
+    for j, i in zip(*np.nonzero(inside), strict=True):
+        out[j, i] = model.color(make_light(float(lu[j, i]), float(lv[j, i]), intensity))[0, 0]
+    return out
 
 
 def material_slice(layer: Mapping[str, Any], coefficients: Mapping[str, float],

@@ -11,6 +11,7 @@ from .filters import f5, unsharp
 from .hsh import hsh_surface
 from .pca import pca_surface
 from .ptm import ptm_surface
+from .sh import sh_surface
 from .shading import (
     F32,
     Light,
@@ -63,7 +64,7 @@ def applicable_modes(layer: Mapping[str, Any]) -> tuple[str, ...]:
         extra = ("diffuseGain", "unsharpCoefficients")
         if layer.get("colorspace") == "lrgb":
             extra += ("unsharpLuminance",)
-    elif kind in ("hsh", "rbf", "bilinear"):
+    elif kind in ("hsh", "sh", "rbf", "bilinear"):
         extra = ("unsharpCoefficients",)
     elif kind == "svbrdf" and has_shape(layer):
         extra = ()
@@ -88,8 +89,8 @@ def resolve_params(params: Mapping[str, float] | None) -> Params:
 
 
 _SURFACES: dict[str, Callable[[Mapping[str, Any], Mapping[str, F32]], Surface]] = {
-    "ptm": ptm_surface, "hsh": hsh_surface, "rbf": pca_surface, "bilinear": pca_surface,
-    "svbrdf": svbrdf_surface, "image": image_surface}
+    "ptm": ptm_surface, "hsh": hsh_surface, "sh": sh_surface, "rbf": pca_surface,
+    "bilinear": pca_surface, "svbrdf": svbrdf_surface, "image": image_surface}
 
 
 def surface(layer: Mapping[str, Any], channels: Mapping[str, F32]) -> Surface:

@@ -4,6 +4,7 @@
  */
 import type { PcaBasis } from '../math/pca-weights';
 import { BASES } from '../math/ptm-basis';
+import { SH_TERM_COUNTS } from '../math/sh-basis';
 import { RelightServiceError } from './errors';
 import { embeddedImage, type EmbeddedImage } from './image-info';
 import { isRecord } from './json';
@@ -15,9 +16,9 @@ export const RELIGHT_SERVICE_TYPE = 'LanternaRelight';
 export const RELIGHT_PROFILE = 'urn:lanterna:relight:1';
 
 /** Supported layer types. */
-export type LayerType = 'ptm' | 'hsh' | 'svbrdf' | 'image' | 'rbf' | 'bilinear';
+export type LayerType = 'ptm' | 'hsh' | 'sh' | 'svbrdf' | 'image' | 'rbf' | 'bilinear';
 /** Every supported layer type. */
-export const LAYER_TYPES: readonly LayerType[] = ['ptm', 'hsh', 'svbrdf', 'image', 'rbf', 'bilinear'];
+export const LAYER_TYPES: readonly LayerType[] = ['ptm', 'hsh', 'sh', 'svbrdf', 'image', 'rbf', 'bilinear'];
 /** Colour spaces of a PTM layer. */
 export type PtmColorspace = 'lrgb' | 'rgb';
 /** How an svbrdf layer's kd and ks are encoded. */
@@ -26,6 +27,9 @@ export type InputColorSpace = 'linear' | 'srgb' | 'display';
 
 /** Term counts of an HSH layer. */
 export const HSH_TERM_COUNTS = [4, 9, 16] as const;
+
+/** Term counts of each layer type with per-term R, G, B planes (`terms` in the block). */
+const TERM_COUNTS: Partial<Record<LayerType, readonly number[]>> = { hsh: HSH_TERM_COUNTS, sh: SH_TERM_COUNTS };
 
 /** Channel groups of an svbrdf layer, by map. */
 export const SVBRDF_MAPS = {
@@ -67,7 +71,7 @@ export interface RelightLayer {
   readonly width: number;
   readonly height: number;
   readonly planes: readonly PlaneGroup[];
-  /** HSH: 4, 9 or 16; 0 for the other types. */
+  /** HSH: 4, 9 or 16; SH: 4 or 9; 0 for the other types. */
   readonly terms: number;
   /** svbrdf: gloss range `[αmin, αmax]`. */
   readonly glossLimits: readonly [number, number];
@@ -78,14 +82,14 @@ export interface RelightLayer {
 }
 
 /**
- * Channel names the contract prescribes for PTM, HSH and RGB image layers, group by group.
+ * Channel names the contract prescribes for PTM, HSH, SH and RGB image layers, group by group.
  * (svbrdf groups are any subset of {@link SVBRDF_MAPS}; a single-band image layer is `[['Y']]`.)
  */
 export function expectedChannels(layerType: LayerType, colorspace: PtmColorspace, terms = 0): string[][] {
   if (layerType === 'image') {
     return [['R', 'G', 'B']];
   }
-  if (layerType === 'hsh') {
+  if (TERM_COUNTS[layerType]) {
     return Array.from({ length: terms }, (_, k) => [`R${k}`, `G${k}`, `B${k}`]);
   }
   if (layerType === 'svbrdf') {
@@ -180,7 +184,7 @@ function checkChannels(layerType: LayerType, colorspace: PtmColorspace, terms: n
     return;
   }
   const expected = pca ? pcaChannelNames(pca.nplanes) : expectedChannels(layerType, colorspace, terms);
-  const kind = layerType === 'ptm' ? `ptm/${colorspace}` : layerType === 'hsh' ? `hsh${terms}`
+  const kind = layerType === 'ptm' ? `ptm/${colorspace}` : TERM_COUNTS[layerType] ? `${layerType}${terms}`
     : pca ? `${layerType} with ${pca.nplanes} planes` : layerType;
   if (planes.length !== expected.length) {
     throw new RelightServiceError(`${kind} needs ${expected.length} plane groups, got ${planes.length}`);
@@ -238,10 +242,12 @@ export function parseRelightService(block: unknown): RelightLayer {
     throw new RelightServiceError(`an ${layerType} layer must have colorspace rgb`);
   }
   let terms = 0;
-  if (layerType === 'hsh') {
+  const counts = TERM_COUNTS[layerType];
+  if (counts) {
     terms = block.terms as number;
-    if (!(HSH_TERM_COUNTS as readonly unknown[]).includes(terms)) {
-      throw new RelightServiceError(`hsh terms must be 4, 9 or 16, got ${JSON.stringify(block.terms)}`);
+    if (!(counts as readonly unknown[]).includes(terms)) {
+      throw new RelightServiceError(`${layerType} terms must be ${counts.slice(0, -1).join(', ')} or `
+        + `${String(counts.at(-1))}, got ${JSON.stringify(block.terms)}`);
     }
   }
   const basis = BASES[layerType];

@@ -7,8 +7,8 @@ import type { Light } from '../math/light';
 import type { RenderMode, ShadingClass } from '../render/modes';
 
 /** A layer kind: a layer type refined by what changes its program, its modes or its uniforms. */
-export type LayerKindName = 'ptm-lrgb' | 'ptm-rgb' | 'hsh4' | 'hsh9' | 'hsh16' | 'svbrdf' | 'svbrdf-flat' | 'image'
-  | 'rbf' | 'bilinear';
+export type LayerKindName = 'ptm-lrgb' | 'ptm-rgb' | 'hsh4' | 'hsh9' | 'hsh16' | 'sh4' | 'sh9' | 'svbrdf'
+  | 'svbrdf-flat' | 'image' | 'rbf' | 'bilinear';
 
 /** The GLSL of a kind: its layer functions (`lt_color`, `lt_normal`, …) and compile-time constants. */
 export interface KindGlsl {
@@ -45,6 +45,6 @@ export interface LayerKind {
   uniforms(layer: RelightLayer): KindUniforms;
 }
 
-/** The modes of the HSH column (HSH and the PCA kinds), in menu order. */
+/** The modes of the HSH column (HSH, SH and the PCA kinds), in menu order. */
 export const HSH_MODES: readonly RenderMode[] = ['color', 'normals', 'albedo', 'diffuse', 'achromatic', 'specular',
   'unsharpNormals', 'unsharpCoefficients', 'unsharpImage'];

@@ -19,6 +19,7 @@ import { BILINEAR_KIND } from './bilinear/bilinear-kind';
 import { HSH_MODES, type KindGlsl, type KindUniforms, type LayerKind, type LayerKindName } from './kind-types';
 import { ptmFragmentBody } from './ptm/ptm.frag';
 import { RBF_KIND } from './rbf/rbf-kind';
+import { SH4_KIND, SH9_KIND } from './sh/sh-kind';
 import { SVBRDF_FRAGMENT_BODY } from './svbrdf/svbrdf.frag';
 
 export type { KindGlsl, KindUniforms, LayerKind, LayerKindName } from './kind-types';
@@ -92,6 +93,8 @@ export const LAYER_KINDS: Readonly<Record<LayerKindName, LayerKind>> = {
   hsh4: hshKind('hsh4', 4),
   hsh9: hshKind('hsh9', 9),
   hsh16: hshKind('hsh16', 16),
+  sh4: SH4_KIND,
+  sh9: SH9_KIND,
   svbrdf: {
     name: 'svbrdf',
     shading: 'svbrdf',
@@ -138,6 +141,7 @@ export type LayerFacts = Pick<RelightLayer, 'layerType' | 'colorspace' | 'terms'
 const KIND_OF_TYPE: Readonly<Record<LayerType, (layer: LayerFacts) => LayerKindName>> = {
   ptm: (layer) => (layer.colorspace === 'lrgb' ? 'ptm-lrgb' : 'ptm-rgb'),
   hsh: (layer) => `hsh${layer.terms}` as LayerKindName,
+  sh: (layer) => `sh${layer.terms}` as LayerKindName,
   svbrdf: (layer) => (svbrdfMapIndices(layer).normals >= 0 ? 'svbrdf' : 'svbrdf-flat'),
   image: () => 'image',
   rbf: () => 'rbf',

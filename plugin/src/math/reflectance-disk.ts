@@ -1,5 +1,5 @@
 /**
- * The colour of one PTM or HSH pixel over the whole light hemisphere, as a disk (orthographic
+ * The colour of one PTM, HSH or SH pixel over the whole light hemisphere, as a disk (orthographic
  * projection of the light direction, as the light widget draws it), for the measurement mode
  * (docs/rendering.md, "Measurement mode"). Mirrors `tiler/render/measure.py`.
  *
@@ -7,6 +7,7 @@
  */
 import { hshWeights } from './hsh-basis';
 import { ptmWeights } from './ptm-basis';
+import { shWeights } from './sh-basis';
 
 /** Side of a disk (pixels). */
 export const DISK_SIZE = 48;
@@ -62,10 +63,21 @@ export function ptmColor(values: Readonly<Record<string, number>>, colorspace: '
   return [r ?? 0, g ?? 0, b ?? 0];
 }
 
+/** `c = Σ_k a_{c,k} w_k·I` from channels `R{k}, G{k}, B{k}` and the light's basis weights `w`. */
+function termColor(values: Readonly<Record<string, number>>, w: ArrayLike<number>, terms: number,
+  intensity: number): Rgb {
+  const [r, g, b] = ['R', 'G', 'B'].map((c) => dot(values, range(terms, (k) => `${c}${k}`), w) * intensity);
+  return [r ?? 0, g ?? 0, b ?? 0];
+}
+
 /** The HSH colour mode's unclamped `c = Σ_k a_{c,k} w_k·I`, from channels `R{k}, G{k}, B{k}`. */
 export function hshColor(values: Readonly<Record<string, number>>, terms: number, lu: number, lv: number,
   intensity = 1): Rgb {
-  const w = hshWeights(lu, lv, terms);
-  const [r, g, b] = ['R', 'G', 'B'].map((c) => dot(values, range(terms, (k) => `${c}${k}`), w) * intensity);
-  return [r ?? 0, g ?? 0, b ?? 0];
+  return termColor(values, hshWeights(lu, lv, terms), terms, intensity);
+}
+
+/** The SH colour mode's unclamped `c = Σ_k a_{c,k} Y_k·I` (Relight's real SH), channels as HSH's. */
+export function shColor(values: Readonly<Record<string, number>>, terms: number, lu: number, lv: number,
+  intensity = 1): Rgb {
+  return termColor(values, shWeights(lu, lv, terms), terms, intensity);
 }

@@ -8,7 +8,7 @@ import { svbrdfMapIndices, type LayerType, type RelightLayer } from '../iiif/rel
 import { brdfSlice, linearToSrgb, SLICE_SIZE, srgbToLinear } from '../math/brdf-slice';
 import type { Light } from '../math/light';
 import { pcaWeights, reconstruct, type PcaBasis } from '../math/pca-weights';
-import { DISK_SIZE, hshColor, ptmColor, reflectanceDisk, type Rgb } from '../math/reflectance-disk';
+import { DISK_SIZE, hshColor, ptmColor, reflectanceDisk, shColor, type Rgb } from '../math/reflectance-disk';
 
 /** What a measurement plots. */
 export type MeasurementKind = 'brdf-slice' | 'reflectance-disk' | 'swatch';
@@ -129,6 +129,7 @@ const pcaColor: DiskColor = (layer, values, intensity) => {
 const DISK_COLORS: Partial<Record<LayerType, DiskColor>> = {
   ptm: (layer, values, intensity) => (lu, lv) => ptmColor(values, layer.colorspace, lu, lv, intensity),
   hsh: (layer, values, intensity) => (lu, lv) => hshColor(values, layer.terms, lu, lv, intensity),
+  sh: (layer, values, intensity) => (lu, lv) => shColor(values, layer.terms, lu, lv, intensity),
   rbf: pcaColor,
   bilinear: pcaColor,
 };

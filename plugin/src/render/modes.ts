@@ -18,7 +18,7 @@ export const DEFAULT_RENDER_MODE: RenderMode = 'color';
  * How a layer shades, i.e. which column of the contract's table applies: `flat` is an image layer
  * or an svbrdf layer without a normal map.
  */
-export type ShadingClass = 'ptm-lrgb' | 'ptm-rgb' | 'hsh' | 'rbf' | 'bilinear' | 'svbrdf' | 'flat';
+export type ShadingClass = 'ptm-lrgb' | 'ptm-rgb' | 'hsh' | 'sh' | 'rbf' | 'bilinear' | 'svbrdf' | 'flat';
 
 /** Human-readable mode names for menus. */
 export const MODE_LABELS: Readonly<Record<RenderMode, string>> = {

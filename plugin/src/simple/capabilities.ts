@@ -5,7 +5,7 @@
 import type { LayerInfo, PresetLibrary } from '../index';
 
 /** The layer types whose materials measurement mode can show (shape and material, PTM, HSH). */
-export const MEASURABLE_TYPES: ReadonlySet<string> = new Set(['svbrdf', 'ptm', 'hsh', 'rbf', 'bilinear']);
+export const MEASURABLE_TYPES: ReadonlySet<string> = new Set(['svbrdf', 'ptm', 'hsh', 'sh', 'rbf', 'bilinear']);
 
 /** What the page shows. */
 export interface SimpleControls {

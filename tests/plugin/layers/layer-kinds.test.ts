@@ -38,9 +38,9 @@ function contractTable(): Map<ShadingClass, RenderMode[]> {
   const rows = section.split('\n').filter((line) => line.startsWith('|')).map((line) => line.split('|').slice(1, -1)
     .map((cell) => cell.trim()));
   const [header = [], , ...body] = rows;
-  expect(header).toEqual(['mode', 'ptm lrgb', 'ptm rgb', 'hsh', 'rbf', 'bilinear', 'svbrdf (with shape)',
+  expect(header).toEqual(['mode', 'ptm lrgb', 'ptm rgb', 'hsh', 'sh', 'rbf', 'bilinear', 'svbrdf (with shape)',
     'svbrdf without shape, image']);
-  const columns: ShadingClass[] = ['ptm-lrgb', 'ptm-rgb', 'hsh', 'rbf', 'bilinear', 'svbrdf', 'flat'];
+  const columns: ShadingClass[] = ['ptm-lrgb', 'ptm-rgb', 'hsh', 'sh', 'rbf', 'bilinear', 'svbrdf', 'flat'];
   const table = new Map(columns.map((c): [ShadingClass, RenderMode[]] => [c, []]));
   for (const [name = '', ...cells] of body) {
     const mode = name.replace(/`/g, '') as RenderMode;
@@ -73,7 +73,7 @@ describe('the layer-kind table', () => {
 
   it('says the light applies exactly to the shaded kinds', () => {
     const lit = KIND_NAMES.filter((n) => LAYER_KINDS[n].lit);
-    expect(lit).toEqual(['ptm-lrgb', 'ptm-rgb', 'hsh4', 'hsh9', 'hsh16', 'svbrdf', 'rbf', 'bilinear']);
+    expect(lit).toEqual(['ptm-lrgb', 'ptm-rgb', 'hsh4', 'hsh9', 'hsh16', 'sh4', 'sh9', 'svbrdf', 'rbf', 'bilinear']);
     for (const name of KIND_NAMES) {
       expect(LAYER_KINDS[name].lit, name).toBe(LAYER_KINDS[name].shading !== 'flat');
     }
@@ -105,8 +105,8 @@ describe('the layer-kind table', () => {
 
   it('shares GLSL only between the svbrdf kinds and the PCA kinds, and previews PTM LRGB from its RGB plane', () => {
     const programs = KIND_NAMES.map((n) => LAYER_KINDS[n].glsl.name);
-    expect(programs).toEqual(['ptm-lrgb', 'ptm-rgb', 'hsh4', 'hsh9', 'hsh16', 'svbrdf', 'svbrdf', 'pca', 'pca',
-      'image']);
+    expect(programs).toEqual(['ptm-lrgb', 'ptm-rgb', 'hsh4', 'hsh9', 'hsh16', 'sh4', 'sh9', 'svbrdf', 'svbrdf', 'pca',
+      'pca', 'image']);
     expect(LAYER_KINDS['svbrdf-flat'].glsl).toBe(LAYER_KINDS.svbrdf.glsl);
     expect(LAYER_KINDS.bilinear.glsl).toBe(LAYER_KINDS.rbf.glsl);
     expect(KIND_NAMES.filter((n) => LAYER_KINDS[n].previewPlane !== 0)).toEqual(['ptm-lrgb']);

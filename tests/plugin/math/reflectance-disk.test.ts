@@ -1,7 +1,7 @@
 import { describe, expect, it } from 'vitest';
 import { hshWeights } from '../../../plugin/src/math/hsh-basis';
 import { relightPtmPixel } from '../../../plugin/src/math/ptm-basis';
-import { diskLight, diskPixelOf, hshColor, ptmColor, reflectanceDisk } from '../../../plugin/src/math/reflectance-disk';
+import { diskLight, diskPixelOf, hshColor, ptmColor, reflectanceDisk, shColor } from '../../../plugin/src/math/reflectance-disk';
 
 const named = (prefixes: string[], n: number, values: number[]): Record<string, number> => {
   const out: Record<string, number> = {};
@@ -55,5 +55,17 @@ describe('reflectanceDisk', () => {
     const w = hshWeights(-0.5, 0.25, 9);
     const want = ['R', 'G', 'B'].map((c) => Array.from(w).reduce((s, x, k) => s + x * (values[`${c}${k}`] ?? 0), 0));
     hshColor(values, 9, -0.5, 0.25).forEach((v, c) => { expect(v).toBeCloseTo(want[c] ?? NaN, 12); });
+  });
+
+  it("is Σ a_k·Y_k(light) for SH, Y Relight's real SH (stated here)", () => {
+    const values = named(['R', 'G', 'B'], 9, Array.from({ length: 27 }, (_, k) => Math.cos(k)));
+    const [x, y] = [0.3, -0.45];
+    const z = Math.sqrt(1 - x * x - y * y);
+    const basis = [0.282095, 0.488603 * y, 0.488603 * z, 0.488603 * x, 1.092548 * x * y, 1.092548 * y * z,
+      0.315392 * (3 * z * z - 1), 1.092548 * x * z, 0.546274 * (x * x - y * y)];
+    const want = ['R', 'G', 'B'].map((c) => basis.reduce((s, b, k) => s + b * (values[`${c}${k}`] ?? 0), 0) * 1.5);
+    shColor(values, 9, x, y, 1.5).forEach((v, c) => { expect(v).toBeCloseTo(want[c] ?? NaN, 12); });
+    const four = shColor(values, 4, x, y);
+    expect(four[0]).toBeCloseTo(basis.slice(0, 4).reduce((s, b, k) => s + b * (values[`R${k}`] ?? 0), 0), 12);
   });
 });

@@ -70,6 +70,18 @@ describe('plotRgba and the caption', () => {
       Math.round((0.5 / Math.sqrt(2 * Math.PI)) * 255), 255]);
   });
 
+  it('plots an sh pixel as a disk too: its centre is Σ a_k·Y_k(overhead)', () => {
+    const sh: RelightLayer = { ...layer, layerType: 'sh' };
+    const { kind, plot } = plotOf(sh, values, 1);
+    expect(kind).toBe('reflectance-disk');
+    const centre = ((plot.height / 2) * plot.width + plot.width / 2) * 3;
+    const { lu, lv } = diskLight(plot.width / 2, plot.height / 2, plot.width);
+    const lz = Math.sqrt(1 - lu * lu - lv * lv); // Y0 = 0.282095, Y2 = 0.488603·lz; R1, R3 are 0
+    expect(plot.data[centre]).toBeCloseTo(2 * 0.282095, 5);
+    expect(plot.data[centre]).not.toBeCloseTo(plotOf(layer, values, 1).plot.data[centre] ?? NaN, 3);
+    expect(lz).toBeGreaterThan(0.99);
+  });
+
   it('names the material, the light or the values', () => {
     const m = { imageX: 3, imageY: 1, layer: 'sv', kind: 'brdf-slice', values: {}, light: { lu: 0.5, lv: 0, lz: 0.87 },
       material: { kd: [0.62, 0.41, 0.3], ks: [0.2, 0.2, 0.2], alpha: 0.15, normal: [0, 0, 1] },

@@ -222,8 +222,8 @@ def _edit(info: dict[str, Any], **changes: Any) -> dict[str, Any]:
 BASE = info_json("ptm", "rgb", 18, [1.0] * 18, [0.0] * 18)
 INFO_ERRORS: dict[str, tuple[dict[str, Any], str]] = {
     "unknown type": (_edit(BASE, type="xyz"), "unknown Relight type 'xyz'"),
-    "sh": (_edit(BASE, type="sh"), "unsupported Relight type 'sh' (plain spherical harmonics); "
-           "supported: ptm, hsh, rbf, bilinear"),
+    "h": (_edit(BASE, type="h"), "unsupported Relight type 'h' (Relight's experimental H-basis); "
+          "supported: ptm, hsh, sh, rbf, bilinear"),
     "rbf rgb": (_edit(BASE, type="rbf"), "rbf with colorspace rgb is not supported; rbf takes "
                 "mrgb or mycc"),
     "no type": (_edit(BASE, type=None), 'info.json: needs "type"'),

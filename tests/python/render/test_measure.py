@@ -7,6 +7,7 @@ import math
 import numpy as np
 import pytest
 
+from lanterna.tiler.formats.pca_model import PcaBasis
 from lanterna.tiler.render import surface
 from lanterna.tiler.render.measure import (
     brdf_slice,
@@ -97,5 +98,51 @@ def test_ptm_disk_and_swatch() -> None:
     np.testing.assert_allclose(disk[1, 1], np.array([0.9, 0.5, 0.1]) * lum, rtol=1e-6)
     image = {"layerType": "image", "planes": [{"channels": ["Y"]}]}
     np.testing.assert_array_equal(swatch(image, {"Y": 0.25}), [0.25, 0.25, 0.25])
-    with pytest.raises(ValueError, match="ptm or hsh"):
+    with pytest.raises(ValueError, match="needs a bilinear, hsh, ptm, rbf, sh layer, not 'image'"):
         reflectance_disk(image, {"Y": 0.25})
+
+
+def test_sh_disk_is_relights_sh_formula() -> None:
+    """An sh pixel's disk is ``c = Σ_k a_{c,k}·Y_k(l)``, Y Relight's real SH (stated here)."""
+    sh = {"layerType": "sh", "terms": 9,
+          "planes": [{"channels": [f"R{k}", f"G{k}", f"B{k}"]} for k in range(9)]}
+    rng = np.random.default_rng(5)
+    values = {f"{c}{k}": float(rng.normal()) for k in range(9) for c in "RGB"}
+    disk = reflectance_disk(sh, values, 7)
+    lu, lv, inside = disk_lights(7)
+    for j, i in ((3, 3), (1, 4), (5, 2)):
+        x, y = float(lu[j, i]), float(lv[j, i])
+        z = math.sqrt(max(0.0, 1 - x * x - y * y))
+        basis = [0.282095, 0.488603 * y, 0.488603 * z, 0.488603 * x, 1.092548 * x * y,
+                 1.092548 * y * z, 0.315392 * (3 * z * z - 1), 1.092548 * x * z,
+                 0.546274 * (x * x - y * y)]
+        want = [sum(values[f"{c}{k}"] * basis[k] for k in range(9)) for c in "RGB"]
+        np.testing.assert_allclose(disk[j, i], want, rtol=1e-5, atol=1e-6)
+    assert (disk[~inside] == 0).all()
+
+
+@pytest.mark.parametrize("layer_type", ["rbf", "bilinear"])
+def test_pca_disk_is_the_colour_mode_at_each_light(layer_type: str) -> None:
+    rng = np.random.default_rng(9)
+    nplanes = 3
+    raw = rng.integers(0, 256, (nplanes + 1) * (8 if layer_type == "rbf" else 25) * 3)
+    if layer_type == "rbf":
+        z = np.linspace(0.3, 1.0, 8)
+        phi = np.arange(8) * 2.4
+        r = np.sqrt(1 - z * z)
+        lights = np.stack([r * np.cos(phi), r * np.sin(phi), z], 1)
+        basis = PcaBasis("rbf", "mrgb", raw.astype(np.uint8), (300.0, 200.0, 150.0),
+                         tuple(lights.ravel()), 0.4)
+    else:
+        basis = PcaBasis("bilinear", "mrgb", raw.astype(np.uint8), (300.0, 200.0, 150.0),
+                         resolution=5)
+    layer = {"layerType": layer_type, **basis.fields(), "planes": []}
+    values = {f"P{q}": float(v) for q, v in enumerate(rng.uniform(-0.3, 0.3, nplanes))}
+    disk = reflectance_disk(layer, values, 5, intensity=0.75)
+    lu, lv, inside = disk_lights(5)
+    one = surface(layer, {k: np.full((1, 1), v, np.float32) for k, v in values.items()})
+    for j, i in ((2, 2), (1, 3), (3, 0)):
+        want = one.color(make_light(float(lu[j, i]), float(lv[j, i]), 0.75))[0, 0]
+        np.testing.assert_allclose(disk[j, i], want, rtol=1e-6, atol=1e-6)
+    assert np.ptp(disk[inside], axis=0).max() > 0  # the colour changes with the light
+    assert (disk[~inside] == 0).all()

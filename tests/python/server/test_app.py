@@ -148,3 +148,21 @@ def test_json_documents_are_conditional_per_url(client: FlaskClient) -> None:
     other = client.get(url, base_url="http://example.net")
     assert other.get_json()["id"].startswith("http://example.net/")
     assert other.headers["ETag"] != first.headers["ETag"]
+
+
+def test_a_changed_base_url_is_read_again(tmp_path: Path) -> None:
+    """The recorded base is cached per version of lanterna.json: a rewrite (new base) is seen."""
+    root = tmp_path / "root"
+    with DatasetWriter(root / "obj", name="obj", label="Object", width=64, height=48,
+                       base_url="https://example.org/pub") as ds:
+        add_ptm_layer(ds, random_ptm_of_size(64, 48), plane_format=PlaneFormat(TileFormat("png")))
+    app = create_app({"DATA_ROOT": root, "VIEWER_DIR": tmp_path}).test_client()
+    served = "http://localhost/datasets/obj/"
+    assert served in app.get("/datasets/obj/manifest.json").get_data(as_text=True)
+    # Another tool rewrites the description and the manifest with another base.
+    for name in ("lanterna.json", "manifest.json"):
+        path = next(p for p in (root / "obj").rglob(name) if p.is_file())
+        path.write_text(path.read_text().replace("https://example.org/pub", "https://other.example/x"))
+    text = app.get("/datasets/obj/manifest.json").get_data(as_text=True)
+    assert "https://other.example/x" not in text
+    assert served in text

@@ -2,14 +2,15 @@
  * HSH layer functions (contract `layerType: "hsh"`, docs/rendering.md): plane k holds term k's
  * R, G, B coefficients; `TERMS` (4, 9 or 16) is a compile-time define. The light's weights come in
  * as uniforms (`hshWeights` on the CPU); the basis is also evaluated per pixel, at the normal, for ρ.
+ * {@link basisFragmentBody} is the same body for any basis of that layout (the `sh` kind's too).
  */
 import { U_HALF, U_HSH_NORMAL_INV, U_HSH_NORMAL_WEIGHTS, U_PARAM, U_WEIGHTS } from '../../gl/uniforms';
 
 const I = U_PARAM.lightIntensity;
 
-/** Per-pixel HSH basis (same formulas as `hshWeights`). */
+/** Per-pixel HSH basis (same formulas as `hshWeights`), as the body's `lt_basis`. */
 const HSH_BASIS = /* glsl */ `
-void hsh_basis(vec2 l, out float w[16]) {
+void lt_basis(vec2 l, out float w[16]) {
   float r = length(l);
   float rc = min(r, 1.0);
   float lz = sqrt(max(0.0, 1.0 - rc * rc));
@@ -45,11 +46,16 @@ void hsh_basis(vec2 l, out float w[16]) {
 }
 `;
 
-/** Layer functions of an HSH program. */
-export const HSH_FRAGMENT_BODY = /* glsl */ `
+/**
+ * Layer functions of a program whose colour is `Σ_k plane_k · w_k(l)` over `TERMS` planes of R, G, B
+ * coefficients, for a basis given as GLSL `void lt_basis(vec2 l, out float w[16])` (the weights of
+ * the light projected at `l`, the first `TERMS` of them used): the light's weights in `u_weights`,
+ * the normal from three fixed relights (`u_hshNormalWeights`, 16 per light), ρ relit along the normal.
+ */
+export const basisFragmentBody = (basis: string): string => /* glsl */ `
 uniform float ${U_HSH_NORMAL_WEIGHTS}[48];
 uniform mat3 ${U_HSH_NORMAL_INV};
-${HSH_BASIS}
+${basis}
 vec3 lt_raw() {
   vec3 c = vec3(0.0);
   for (int k = 0; k < TERMS; k++) {
@@ -72,7 +78,7 @@ vec3 lt_normal() {
 }
 vec3 lt_albedo() {
   float w[16];
-  hsh_basis(lt_normal().xy, w);
+  lt_basis(lt_normal().xy, w);
   vec3 c = vec3(0.0);
   for (int k = 0; k < TERMS; k++) {
     c += lanterna_plane(k) * w[k];
@@ -89,3 +95,6 @@ vec3 lt_specular() {
 vec3 lt_unsharp_q() { return lt_color(); }
 vec3 lt_unsharp(vec3 q, vec3 qbar) { return q + ${U_PARAM.umGain} * (q - qbar); }
 `;
+
+/** Layer functions of an HSH program. */
+export const HSH_FRAGMENT_BODY = basisFragmentBody(HSH_BASIS);
