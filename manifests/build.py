@@ -10,7 +10,8 @@ Layers with an overlay add ``canvas.annotations`` (:mod:`lanterna.manifests.over
 layers with published patches a reference to their page of W3C annotations after them
 (:mod:`lanterna.manifests.annotation_page`); the
 preset library is a service on the Manifest and the pixel size a physdim service on the Canvas
-(:mod:`lanterna.manifests.extensions`).
+(:mod:`lanterna.manifests.extensions`); the thumbnail, metadata, rights, attribution, provider and
+links come from the description's ``publication`` (:mod:`lanterna.manifests.metadata`).
 
 Every manifest built here is checked against the official IIIF Presentation 3.0 JSON Schema
 (:mod:`lanterna.manifests.validate`, a few milliseconds) before it is written, so an import never
@@ -37,6 +38,7 @@ from lanterna.errors import LanternaInputError
 from .annotation_page import page_references
 from .extensions import physdim_service, presets_service
 from .lightingmap import add_lighting_maps
+from .metadata import publication_properties
 from .overlays import overlay_pages
 from .services import image_service, with_plane_descriptions
 from .validate import validate_manifest
@@ -86,11 +88,7 @@ def build_manifest(desc: dict[str, Any],
     pages = [*overlay_pages(desc, infos), *page_references(desc)]
     if pages:
         doc["items"][0]["annotations"] = pages
-    bands = [layer["service"]["wavelength"] for layer in desc["layers"]
-             if "wavelength" in layer["service"]]  # spectral band layers (docs/importing.md)
-    if bands:
-        doc["metadata"] = [{"label": {"en": ["Wavelengths"]},
-                            "value": {"en": [", ".join(f"{nm:g} nm" for nm in bands)]}}]
+    doc = _with_properties(doc, publication_properties(desc, infos, ds_url))
     presets, physdim = presets_service(desc, ds_url), physdim_service(desc, ds_url)
     if presets is not None:
         doc["service"] = [presets]
@@ -102,3 +100,13 @@ def build_manifest(desc: dict[str, Any],
         raise LanternaInputError(None, "the manifest would not be valid IIIF Presentation 3.0: "
                                  f"{errors[0]}{more}")
     return doc
+
+
+def _with_properties(doc: dict[str, Any], properties: dict[str, Any]) -> dict[str, Any]:
+    """``doc`` with ``properties`` inserted before its ``items`` (the spec's reading order)."""
+    out: dict[str, Any] = {}
+    for key, value in doc.items():
+        if key == "items":
+            out.update(properties)
+        out[key] = value
+    return out

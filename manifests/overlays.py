@@ -1,10 +1,15 @@
-"""The overlay part of a manifest: one ``supplementing`` AnnotationPage per annotated layer.
+"""The overlay part of a manifest: one AnnotationPage of ``commenting`` annotations per layer.
 
-Encoding (docs/annotations.md, "Storage and manifest"): per overlay level one Annotation whose
-body is the level ``Image`` (with its ``ImageService3`` and a ``LanternaOverlayLevel`` service that
-carries the level and its texts) and a ``TextualBody`` with the long text; the label is the short
-text and the target the whole canvas through a ``FragmentSelector``. Built as plain dicts because
-iiif-prezi3 drops the keys it does not model on Annotation and AnnotationBody.
+Encoding (docs/annotations.md, "Storage and manifest"): per overlay level one Annotation,
+motivated ``commenting`` (a motivation stock viewers such as Mirador list by default), whose
+target is the canvas region the level's drawing covers (the level record's ``box``, in canvas
+pixels, through an ``xywh`` ``FragmentSelector``; the whole canvas for a record without one or
+with an empty drawing) and whose body is the level ``Image`` (with its ``ImageService3`` and a
+``LanternaOverlayLevel`` service that carries the level and its texts), then a ``TextualBody``
+of the short text (``text/plain``, purpose ``commenting``) and one of the long text
+(``text/html``, purpose ``describing``), each when not empty; the label is the short text.
+Built as plain dicts because iiif-prezi3 drops the keys it does not model on Annotation and
+AnnotationBody.
 """
 
 from __future__ import annotations
@@ -69,19 +74,39 @@ def _annotation(ds_url: str, canvas_id: str, page_id: str, layer_id: str, entry:
              "long": long},
         ],
     }]
+    if short:
+        body.append({"id": f"{anno_id}/short", "type": "TextualBody", "value": short,
+                     "format": "text/plain", "purpose": "commenting"})
     if long:
         body.append({"id": f"{anno_id}/long", "type": "TextualBody", "value": long,
                      "format": "text/html", "purpose": "describing"})
+    x, y, w, h = drawn_region(entry, desc)
     return {
         "id": anno_id,
         "type": "Annotation",
-        "motivation": "supplementing",
+        "motivation": "commenting",
         "label": {"en": [short or f"Level {level}"]},
         "body": body,
         "target": {
             "type": "SpecificResource",
             "source": {"id": canvas_id, "type": "Canvas"},
             "selector": {"type": "FragmentSelector", "conformsTo": MEDIA_FRAGMENTS,
-                         "value": f"xywh=0,0,{desc['width']},{desc['height']}"},
+                         "value": f"xywh={x},{y},{w},{h}"},
         },
     }
+
+
+def drawn_region(entry: dict[str, Any], desc: dict[str, Any]) -> tuple[int, int, int, int]:
+    """The ``(x, y, w, h)`` canvas region a level record's drawing covers.
+
+    Its ``box`` when that is four integers of a non-empty rectangle inside the canvas, else the
+    whole canvas (records written before the box was kept, and empty drawings).
+    """
+    width, height = int(desc["width"]), int(desc["height"])
+    box = entry.get("box")
+    if (isinstance(box, list) and len(box) == 4
+            and all(isinstance(v, int) and not isinstance(v, bool) for v in box)):
+        x, y, w, h = box
+        if w > 0 and h > 0 and x >= 0 and y >= 0 and x + w <= width and y + h <= height:
+            return x, y, w, h
+    return 0, 0, width, height

@@ -5,17 +5,19 @@ from __future__ import annotations
 import argparse
 import math
 import sys
-from collections.abc import Iterator
+from collections.abc import Callable, Iterator
 from contextlib import contextmanager
 from pathlib import Path
-from typing import TypeAlias
+from typing import Any, TypeAlias, TypeVar
 
 from lanterna.errors import LanternaInputError
+from lanterna.manifests import metadata as md
 from lanterna.tiler.dataset.writer import DEFAULT_BASE_URL
 from lanterna.tiler.limits import DEFAULT_MAX_PIXELS, ENVIRONMENT
 
 #: What ``sub.add_parser`` is called on.
 SubParsers: TypeAlias = "argparse._SubParsersAction[argparse.ArgumentParser]"
+T = TypeVar("T")
 
 
 def dataset_args(p: argparse.ArgumentParser, *, label_default: str) -> None:
@@ -38,6 +40,46 @@ def dataset_args(p: argparse.ArgumentParser, *, label_default: str) -> None:
                         "bar in the viewers; default: a Relight source's pixelSizeInMM, else "
                         "none)")
     max_pixels_arg(p)
+    publication_args(p)
+
+
+def publication_args(p: argparse.ArgumentParser) -> None:
+    """What the manifest tells a portal (docs/dataset-format.md, "Manifest metadata"); a
+    description file's fields of the same names are used for the options not given."""
+    g = p.add_argument_group("manifest metadata (what a portal shows; default: none of them, "
+                             "and a thumbnail of the first layer)")
+    g.add_argument("--summary", metavar="TEXT", help="a summary (HTML allowed)")
+    g.add_argument("--rights", type=_checked(md.check_rights), metavar="URI",
+                   help="licence or rights statement: a Creative Commons or RightsStatements.org "
+                        "URI, e.g. http://creativecommons.org/licenses/by/4.0/")
+    g.add_argument("--attribution", type=_checked(md.check_text), metavar="TEXT",
+                   help="the attribution to show with the object (requiredStatement)")
+    g.add_argument("--provider", type=_checked(md.parse_provider), metavar="NAME[,URL[,LOGO]]",
+                   help="the institution publishing it, with its homepage and logo URLs")
+    g.add_argument("--homepage", type=_checked(md.check_url), metavar="URL",
+                   help="the object's web page")
+    g.add_argument("--see-also", type=_checked(md.check_url), action="append", default=[],
+                   metavar="URL", help="a machine-readable description of it; repeatable")
+    g.add_argument("--metadata", type=_checked(md.parse_metadata), action="append", default=[],
+                   metavar="LABEL=VALUE", help="a label and value pair to show; repeatable")
+
+
+def publication_of(args: argparse.Namespace) -> dict[str, Any]:
+    """The ``publication`` object of the options given (lanterna.manifests.metadata)."""
+    given = {"rights": args.rights, "attribution": args.attribution, "provider": args.provider,
+             "homepage": args.homepage, "seeAlso": args.see_also, "metadata": args.metadata}
+    return {k: v for k, v in given.items() if v}
+
+
+def _checked(check: Callable[[str], T]) -> Callable[[str], T]:
+    """An argparse ``type`` from a check that raises ValueError (its message becomes argparse's)."""
+    def parse(text: str) -> T:
+        try:
+            return check(text)
+        except ValueError as err:
+            raise argparse.ArgumentTypeError(str(err)) from None
+    parse.__name__ = check.__name__
+    return parse
 
 
 def max_pixels_arg(p: argparse.ArgumentParser) -> None:

@@ -11,7 +11,13 @@ from lanterna.errors import LanternaInputError
 if TYPE_CHECKING:
     from lanterna.tiler.fit.run import ImageSet
 
-from .common import SubParsers, annotations_set_aside, check_tile_size, dataset_args
+from .common import (
+    SubParsers,
+    annotations_set_aside,
+    check_tile_size,
+    dataset_args,
+    publication_of,
+)
 from .summary import print_written
 
 FIT_EXAMPLES = """examples:
@@ -112,6 +118,7 @@ def run(args: argparse.Namespace) -> int:
                  tiff=args.tiff, scratch=args.scratch, fit_space=args.fit_space,
                  scheduler=args.scheduler, plane_format=plane_format, report=print,
                  progress=None if args.quiet else Progress, pixel_size_mm=args.pixel_size,
-                 planes=args.planes, colorspace=args.colorspace)
+                 planes=args.planes, colorspace=args.colorspace, summary=args.summary,
+                 publication=publication_of(args))
     print_written(args.output)
     return 0

@@ -7,7 +7,13 @@ from pathlib import Path
 
 from lanterna.errors import LanternaInputError
 
-from .common import SubParsers, annotations_set_aside, check_tile_size, dataset_args
+from .common import (
+    SubParsers,
+    annotations_set_aside,
+    check_tile_size,
+    dataset_args,
+    publication_of,
+)
 from .summary import print_written
 
 IMPORT_EXAMPLES = """examples:
@@ -85,6 +91,7 @@ def run(args: argparse.Namespace) -> int:
                              label=args.label,
                              bands=bands, fusions=fusions, base_url=args.base_url,
                              tile_size=args.tile_size, force=args.force, tiff=args.tiff,
-                             plane_format=plane_format, pixel_size_mm=args.pixel_size)
+                             plane_format=plane_format, pixel_size_mm=args.pixel_size,
+                             summary=args.summary, publication=publication_of(args))
     print_written(out)
     return 0

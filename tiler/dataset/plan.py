@@ -9,7 +9,7 @@ make the plans.
 
 from __future__ import annotations
 
-from collections.abc import Callable, Sequence
+from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
@@ -36,12 +36,14 @@ class LayerPlan:
 def build_dataset(plans: Sequence[LayerPlan], out: Path, *, name: str, label: str,
                   base_url: str = DEFAULT_BASE_URL, tile_size: int = 256, force: bool = False,
                   summary: str | None = None, quality: dict[str, Any] | None = None,
-                  tiff: bool = False, pixel_size_mm: float | None = None) -> Path:
+                  tiff: bool = False, pixel_size_mm: float | None = None,
+                  publication: Mapping[str, Any] | None = None) -> Path:
     """Write the planned layers (same size, unique ids) as one dataset at ``out``.
 
     ``tiff=True`` also writes a pyramidal TIFF per image for the IIIF image server.
     ``pixel_size_mm`` is the physical size of a pixel (``--pixel-size``); without it, the first
-    one a plan's source states is used.
+    one a plan's source states is used. ``publication``: the manifest's rights, attribution,
+    provider, links and metadata (:mod:`lanterna.manifests.metadata`).
     """
     if not plans:
         raise LanternaInputError(None, "nothing to import: give at least one source")
@@ -59,7 +61,8 @@ def build_dataset(plans: Sequence[LayerPlan], out: Path, *, name: str, label: st
     with DatasetWriter(out, name=name, label=label, width=w, height=h, base_url=base_url,
                        tile_size=tile_size, source=", ".join(p.source for p in plans),
                        force=force, summary=summary,
-                       quality=quality, tiff=tiff, pixel_size_mm=pixel_size_mm) as ds:
+                       quality=quality, tiff=tiff, pixel_size_mm=pixel_size_mm,
+                       publication=publication) as ds:
         for plan in plans:
             plan.add(ds)
     return Path(out)

@@ -13,7 +13,7 @@ import math
 import os
 import re
 import shutil
-from collections.abc import Iterator
+from collections.abc import Iterator, Mapping
 from contextlib import ExitStack, contextmanager
 from pathlib import Path
 from types import TracebackType
@@ -26,6 +26,7 @@ import pyvips
 from lanterna.errors import LanternaInputError
 from lanterna.manifests.annotation_page import annotation_documents
 from lanterna.manifests.build import build_manifest
+from lanterna.manifests.metadata import check_publication
 from lanterna.manifests.services import with_plane_descriptions
 from lanterna.tiler.iiif.encoding import TileFormat, tile_format
 from lanterna.tiler.iiif.pyramid import vips_from_array, write_pyramid
@@ -65,7 +66,8 @@ class DatasetWriter:
                  source: str | None = None, force: bool = False,
                  summary: str | None = None, quality: dict[str, Any] | None = None,
                  tiff: bool = False, pixel_size_mm: float | None = None,
-                 presets: dict[str, Any] | None = None) -> None:
+                 presets: dict[str, Any] | None = None,
+                 publication: Mapping[str, Any] | None = None) -> None:
         self.out = Path(out)
         self.name = check_identifier(name, "dataset name")
         self.label = label
@@ -79,6 +81,8 @@ class DatasetWriter:
         self.tiff = tiff
         self.pixel_size_mm = check_pixel_size(pixel_size_mm)
         self.presets = presets
+        #: rights, attribution, provider, links, metadata (lanterna.manifests.metadata)
+        self.publication = check_publication(publication)
         self.images: dict[str, dict[str, Any]] = {}
         self.layers: list[dict[str, Any]] = []
         self._shared: dict[str, str] = {}
@@ -197,6 +201,7 @@ class DatasetWriter:
             **({"summary": self.summary} if self.summary else {}),
             **({"quality": self.quality} if self.quality else {}),
             **({"pixelSizeMM": self.pixel_size_mm} if self.pixel_size_mm else {}),
+            **({"publication": self.publication} if self.publication else {}),
             "images": self.images,
             "layers": [
                 {"id": layer["id"], "label": layer["label"], "body": layer["body"],

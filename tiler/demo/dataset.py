@@ -55,7 +55,7 @@ from lanterna.tiler.overlays.store import (
 )
 
 from .dome import demo_lights, render_stack
-from .presets import DEMO_PIXEL_MM, demo_presets
+from .presets import DEMO_PIXEL_MM, DEMO_PUBLICATION, demo_presets
 from .tablet import make_demo_object
 
 DEMO_SIZE = (1536, 1152)
@@ -159,7 +159,7 @@ def build_demo(out: Path, *, base_url: str = DEFAULT_BASE_URL, force: bool = Fal
     with DatasetWriter(out, name=Path(out).name, label=label, width=width, height=height,
                        base_url=base_url, source=DEMO_SOURCE, force=force,
                        summary=summary, pixel_size_mm=DEMO_PIXEL_MM,
-                       presets=demo_presets(width, height)) as ds:
+                       presets=demo_presets(width, height), publication=DEMO_PUBLICATION) as ds:
         add_ptm_layer(ds, ptm, layer_id="ptm", label="Relief tablet (PTM LRGB)")
         add_hsh_layer(ds, hsh, layer_id="hsh", label="Relief tablet (HSH, 9 terms)")
         add_planes_layer(ds, rbf, layer_id="rbf", label="Relief tablet (RBF, 18 PCA planes)")

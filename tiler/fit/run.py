@@ -11,7 +11,7 @@ from __future__ import annotations
 import contextlib
 import re
 import tempfile
-from collections.abc import Callable, Sequence
+from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
@@ -104,7 +104,8 @@ def fit_sets(sets: Sequence[ImageSet], models: Sequence[str], out: Path, *,
              report: Callable[[str], None] = lambda _: None,
              progress: ProgressFactory | None = None,
              pixel_size_mm: float | None = None, planes: object = None,
-             colorspace: object = None) -> dict[str, Any]:
+             colorspace: object = None, summary: str | None = None,
+             publication: Mapping[str, Any] | None = None) -> dict[str, Any]:
     """Fit ``models`` to every image set (and fusion) and write them as one dataset ``out``.
 
     One set without a name gives layers named by model (``ptm``, ``hsh9``, …); named sets
@@ -222,7 +223,8 @@ def fit_sets(sets: Sequence[ImageSet], models: Sequence[str], out: Path, *,
         default_label = collection_name(sets[0]) if len(sets) == 1 else Path(out).name
         build_dataset(plans, out, name=name or Path(out).name, label=label or default_label,
                       base_url=base_url, tile_size=tile_size, force=force, quality=quality,
-                      tiff=tiff, pixel_size_mm=pixel_size_mm)
+                      tiff=tiff, pixel_size_mm=pixel_size_mm, summary=summary,
+                      publication=publication)
     return quality
 
 

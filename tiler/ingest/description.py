@@ -3,6 +3,8 @@
 Lanterna's own form (paths relative to the file; docs/importing.md)::
 
     {"name": "tablet", "label": "Tablet", "summary": "<p>…</p>",
+     "rights": "http://creativecommons.org/licenses/by/4.0/", "attribution": "…",
+     "provider": {"label": "…", "homepage": "https://…"}, "metadata": [{"label": …, "value": …}],
      "layers": [
        {"id": "vis", "source": "vis.ptm"},
        {"id": "hsh", "source": "vis.rti", "label": "Visible (HSH)"},
@@ -34,6 +36,8 @@ from .paths import referenced
 from .scene import is_scene, plan_scene
 from .sources import plan_bands, plan_source, plan_svbrdf
 
+#: The description's fields that go to the manifest as they are (lanterna.manifests.metadata).
+PUBLICATION_FIELDS = ("rights", "attribution", "provider", "homepage", "seeAlso", "metadata")
 #: Defaults of an svbrdf entry (docs/importing.md).
 GLOSS_LIMITS = (0.01, 0.5)
 
@@ -74,7 +78,9 @@ Entry = SourceEntry | SvbrdfEntry | BandsEntry
 
 def plan_description(path: Path, *, root: Path | None = None,
                      plane_format: PlaneFormat = AUTO) -> tuple[dict[str, Any], list[LayerPlan]]:
-    """Return the dataset fields (name, label, summary) and the layer plans of a description.
+    """Return the dataset fields (name, label, summary, publication) and the layer plans of a
+    description (``publication``: its rights, attribution, provider, homepage, seeAlso and
+    metadata, as given; docs/dataset-format.md, "Manifest metadata").
 
     ``root``: every file the description names must be inside this folder (for descriptions that
     do not come from the command line: :mod:`.paths`). ``plane_format``: ``--plane-format``.
@@ -89,6 +95,9 @@ def plan_description(path: Path, *, root: Path | None = None,
     for entry in read_entries(doc, path, root=root):
         plans.extend(plan_entry(entry, path.parent, plane_format))
     fields: dict[str, Any] = {k: doc[k] for k in ("name", "label", "summary") if k in doc}
+    publication = {k: doc[k] for k in PUBLICATION_FIELDS if k in doc}
+    if publication:
+        fields["publication"] = publication
     return fields, plans
 
 

@@ -2,8 +2,9 @@
 
 from __future__ import annotations
 
-from collections.abc import Sequence
+from collections.abc import Mapping, Sequence
 from pathlib import Path
+from typing import Any
 
 from lanterna.errors import LanternaInputError
 from lanterna.tiler.dataset.plan import LayerPlan, build_dataset
@@ -22,7 +23,8 @@ def import_sources(sources: Sequence[Path | str], out: Path, *, name: str | None
                    fusions: Sequence[Sequence[str]] = (), base_url: str = DEFAULT_BASE_URL,
                    tile_size: int = 256, force: bool = False, tiff: bool = False,
                    plane_format: PlaneFormat = AUTO, pixel_size_mm: float | None = None,
-                   extra_plans: Sequence[LayerPlan] = ()) -> Path:
+                   extra_plans: Sequence[LayerPlan] = (), summary: str | None = None,
+                   publication: Mapping[str, Any] | None = None) -> Path:
     """Import sources as the layers of dataset ``out`` (in order; the first is the default).
 
     A source is a ``.ptm``, ``.rti``, a Relight web-format folder (any layout), an OpenLIME
@@ -35,9 +37,12 @@ def import_sources(sources: Sequence[Path | str], out: Path, *, name: str | None
     ``plane_format`` (``--plane-format``) is the tile format of relightable layers' planes
     (:mod:`lanterna.tiler.dataset.plane_format`). ``pixel_size_mm`` (``--pixel-size``) is the
     physical size of a pixel; without it, a Relight source's ``pixelSizeInMM`` is used.
+    ``summary`` and ``publication`` (rights, attribution, provider, links, metadata:
+    :mod:`lanterna.manifests.metadata`) come from the options; a description file's own
+    fields fill in the ones not given, field by field.
     """
     plans: list[LayerPlan] = []
-    fields: dict[str, str] = {}
+    fields: dict[str, Any] = {}
     for given in sources:
         if is_manifest_source(given):
             mf_fields, plan = plan_archiox(given, plane_format=plane_format)
@@ -65,8 +70,10 @@ def import_sources(sources: Sequence[Path | str], out: Path, *, name: str | None
                                "dataset name")
     ds_label = label or fields.get("label") or first.stem
     return build_dataset(plans, out, name=ds_name, label=ds_label, base_url=base_url,
-                         tile_size=tile_size, force=force, summary=fields.get("summary"),
-                         tiff=tiff, pixel_size_mm=pixel_size_mm)
+                         tile_size=tile_size, force=force,
+                         summary=summary or fields.get("summary"), tiff=tiff,
+                         pixel_size_mm=pixel_size_mm,
+                         publication={**fields.get("publication", {}), **(publication or {})})
 
 
 def _safe_name(stem: str) -> str:

@@ -23,7 +23,7 @@ from lanterna.tiler.iiif.geometry import scale_factors
 
 from . import geometry as og
 from . import store
-from .composite import fit_level_image, load_rgba
+from .composite import drawn_box, fit_level_image, load_rgba
 from .patches import levels_from_gimp, levels_from_patches, read_texts
 from .published import OverlayInputError, OverlayReport, canvas_of, find_layer, image_id
 from .rebuild import rebuild_from_store
@@ -163,7 +163,8 @@ def scene_overlay(ds: DatasetWriter, layer_id: str, raw: Mapping[str, Any],
         result["levels"].append({
             "level": level, "image": ident, "width": w, "height": h,
             "short": str(shorts[i]) if i < len(shorts) else "",
-            "long": str(longs[i]) if i < len(longs) else ""})
+            "long": str(longs[i]) if i < len(longs) else "",
+            **({"box": box} if (box := drawn_box(rgba, level, ds.width, ds.height)) else {})})
     return result
 
 

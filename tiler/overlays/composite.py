@@ -115,6 +115,18 @@ def composite(level_w: int, level_h: int,
     return unpremultiply(acc)
 
 
+def drawn_box(rgba: npt.NDArray[np.uint8], level: int, width: int,
+              height: int) -> list[int] | None:
+    """The canvas rectangle ``[x, y, w, h]`` of a level image's drawn (not fully transparent)
+    pixels, or None when nothing is drawn (the record's ``box``: docs/annotations.md)."""
+    alpha = rgba[..., 3] > 0
+    rows, cols = np.flatnonzero(alpha.any(axis=1)), np.flatnonzero(alpha.any(axis=0))
+    if rows.size == 0:
+        return None
+    extent = (int(cols[0]), int(rows[0]), int(cols[-1]) + 1, int(rows[-1]) + 1)
+    return list(og.canvas_box(extent, level, width, height))
+
+
 def fit_level_image(rgba: npt.NDArray[np.uint8], level: int, width: int, height: int,
                     path: Path) -> npt.NDArray[np.uint8]:
     """Return a per-level image at its level's size.

@@ -93,6 +93,19 @@ def level_size(width: int, height: int, level: int) -> tuple[int, int]:
     return math.ceil(width / f), math.ceil(height / f)
 
 
+def canvas_box(extent: tuple[int, int, int, int], level: int, width: int,
+               height: int) -> tuple[int, int, int, int]:
+    """Return a level-pixel extent ``(x0, y0, x1, y1)`` as a canvas rectangle ``(x, y, w, h)``.
+
+    Level pixel ``(i, j)`` covers canvas pixels ``i·2^L`` to ``(i+1)·2^L``; the result is clipped
+    to the ``width`` × ``height`` canvas (the last level pixel may reach past its edge).
+    """
+    f = 1 << level
+    x0, y0, x1, y1 = extent
+    left, top = min(x0 * f, width), min(y0 * f, height)
+    return left, top, min(x1 * f, width) - left, min(y1 * f, height) - top
+
+
 def max_level(scale_factors: Iterable[int]) -> int:
     """Return the deepest level of a pyramid with these IIIF ``scaleFactors`` (1, 2, 4, …)."""
     return max(int(s) for s in scale_factors).bit_length() - 1

@@ -32,6 +32,7 @@ from lanterna.tiler.iiif.pyramid import write_pyramid
 
 from . import geometry as og
 from . import store
+from .composite import drawn_box
 from .patches import levels_from_patches
 from .published import (
     Canvas,
@@ -139,11 +140,18 @@ def _publish(dataset: Path, entry: dict[str, Any], canvas: Canvas, snap: Path,
             desc["images"][ident] = {"format": "png", "width": w, "height": h, "bands": 4}
             text = texts.get(str(level), {})
             entries.append({"level": level, "image": ident, "width": w, "height": h,
-                            "short": text.get("short", ""), "long": text.get("long", "")})
+                            "short": text.get("short", ""), "long": text.get("long", ""),
+                            **_box(rgba, level, canvas)})
         layer["overlay"] = {"source": "store", "build": build, "fingerprint": fingerprint,
                             "levels": entries,
                             "patches": _published_patches(tmp, layer_id, snap, patches)}
     return report
+
+
+def _box(rgba: Any, level: int, canvas: Canvas) -> dict[str, list[int]]:
+    """A level record's ``box``: the canvas region its drawing covers (none when empty)."""
+    box = drawn_box(rgba, level, canvas.width, canvas.height)
+    return {} if box is None else {"box": box}
 
 
 def _retire_images(tmp: Path, desc: dict[str, Any], layer_id: str, current: set[str]) -> None:

@@ -1,7 +1,9 @@
 /**
  * Read the overlay levels of a Lanterna manifest (`docs/annotations.md`, "Storage and manifest"):
- * `supplementing` annotations in `canvas.annotations` whose `Image` body carries a
- * `LanternaOverlayLevel` service. Pure: no DOM, no network.
+ * annotations in `canvas.annotations` whose `Image` body carries a `LanternaOverlayLevel` service,
+ * motivated `commenting` (since the encoding stock viewers list; the target is the drawing's own
+ * region and a `TextualBody` holds the short text) or `supplementing` (manifests written before,
+ * whole-canvas targets). Pure: no DOM, no network.
  */
 import { OverlayError } from './errors';
 import { embeddedImage, type EmbeddedImage } from './image-info';
@@ -35,10 +37,14 @@ function text(x: unknown): string {
   return typeof x === 'string' ? x : '';
 }
 
-/** The value of the annotation's `TextualBody` (`purpose: describing`), if any. */
+/** The motivations of an overlay level annotation: the current one and the earlier one. */
+export const OVERLAY_MOTIVATIONS: readonly string[] = ['commenting', 'supplementing'];
+
+/** The long text of the annotation: its `TextualBody` of purpose `describing` (or HTML), if any. */
 function describingText(bodies: readonly unknown[]): string {
   for (const b of bodies) {
-    if (isRecord(b) && b.type === 'TextualBody' && typeof b.value === 'string') {
+    if (isRecord(b) && b.type === 'TextualBody' && typeof b.value === 'string'
+      && (asArray(b.purpose).includes('describing') || b.format === 'text/html')) {
       return b.value;
     }
   }
@@ -94,7 +100,7 @@ export function parseOverlays(canvas: unknown, layerIds: readonly string[]): Map
       continue;
     }
     for (const anno of asArray(page.items)) {
-      if (!isRecord(anno) || !asArray(anno.motivation).includes('supplementing')) {
+      if (!isRecord(anno) || !asArray(anno.motivation).some((m) => OVERLAY_MOTIVATIONS.includes(String(m)))) {
         continue;
       }
       const bodies = asArray(anno.body);

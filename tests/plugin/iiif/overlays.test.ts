@@ -33,12 +33,40 @@ describe('overlay levels from canvas.annotations', () => {
     expect(parseOverlays(null, ['ptm']).size).toBe(0);
   });
 
-  it('ignores other supplementing content and non-supplementing annotations', () => {
-    const other = { id: 'x', type: 'Annotation', motivation: 'commenting', body: overlayAnnotation('ptm', 1, 's', 'l').body };
+  it('ignores other supplementing content and annotations of other motivations', () => {
+    const other = { id: 'x', type: 'Annotation', motivation: 'painting', body: overlayAnnotation('ptm', 1, 's', 'l').body };
     const plain = { id: 'y', type: 'Annotation', motivation: 'supplementing', body: [{ id: 'z.png', type: 'Image' }] };
     const text = { id: 'w', type: 'Annotation', motivation: 'supplementing', body: { type: 'TextualBody', value: 'hi' } };
     const m = parseOverlays(canvasOf([overlayPage('ptm', [other, plain, text]), 'not a page']), ['ptm']);
     expect(m.size).toBe(0);
+  });
+
+  it('reads the current encoding (commenting, the drawing\'s region, a short TextualBody) as the earlier one', () => {
+    const earlier = overlayAnnotation('ptm', 1, 'Glyphs', '<p>Detail.</p>');
+    const body = earlier.body as Record<string, unknown>[];
+    const current = {
+      ...earlier,
+      motivation: 'commenting',
+      target: { ...(earlier.target as Record<string, unknown>),
+        selector: { type: 'FragmentSelector', conformsTo: 'http://www.w3.org/TR/media-frags/', value: 'xywh=40,96,200,310' } },
+      body: [body[0], { type: 'TextualBody', format: 'text/plain', purpose: 'commenting', value: 'Glyphs' }, body[1]],
+    };
+    const read = (anno: unknown): unknown => parseOverlays(canvasOf([overlayPage('ptm', [anno])]), ['ptm']).get('ptm');
+    expect(read(current)).toEqual(read(earlier));
+    expect((read(current) as { short: string; long: string }[])[0]).toMatchObject({ short: 'Glyphs', long: '<p>Detail.</p>' });
+    expect(read({ ...current, motivation: ['highlighting', 'commenting'] })).toEqual(read(earlier));
+  });
+
+  it('takes the long text from the describing TextualBody, not the short one, when the block has none', () => {
+    const anno = overlayAnnotation('ptm', 1, 's', '<p>from the body</p>');
+    const body = anno.body as Record<string, unknown>[];
+    body.splice(1, 0, { type: 'TextualBody', format: 'text/plain', purpose: 'commenting', value: 's' });
+    const service = (body[0]?.service as Record<string, unknown>[])[1];
+    if (service) {
+      delete service.long;
+    }
+    const m = parseOverlays(canvasOf([overlayPage('ptm', [{ ...anno, motivation: 'commenting' }])]), ['ptm']);
+    expect(m.get('ptm')?.[0]?.long).toBe('<p>from the body</p>');
   });
 
   it('takes the long text from the TextualBody when the block has none', () => {

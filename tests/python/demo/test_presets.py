@@ -42,6 +42,20 @@ def test_the_demo_ships_its_library_and_pixel_size(demo: Path) -> None:
     assert len(manifest["service"][0]["base"]) >= 5 and len(manifest["service"][0]["lens"]) >= 3
 
 
+def test_the_demo_manifest_says_what_a_portal_shows(demo: Path) -> None:
+    manifest = read_json(demo / "manifest.json")
+    assert manifest["rights"] == "http://creativecommons.org/publicdomain/zero/1.0/"
+    attribution = manifest["requiredStatement"]["value"]["en"][0]
+    assert "Synthetic" in attribution and "Lanterna" in attribution
+    assert manifest["provider"][0]["label"] == {"en": ["The Lanterna project"]}
+    assert any("not a real object" in m["value"]["en"][0] for m in manifest["metadata"])
+    assert (demo / "iiif" / manifest["thumbnail"][0]["id"].split("/iiif/", 1)[1]).is_file()
+    width, height = SIZE
+    for anno in manifest["items"][0]["annotations"][0]["items"]:  # the overlay levels
+        assert anno["motivation"] == "commenting"
+        assert anno["target"]["selector"]["value"] != f"xywh=0,0,{width},{height}"
+
+
 def test_every_preset_renders_and_its_views_scale_with_the_size() -> None:
     small, large = demo_presets(384, 288), demo_presets(1536, 1152)
     for pid, preset in large["presets"].items():

@@ -59,7 +59,7 @@ def test_the_kinds_cover_every_layer_type_and_an_overlay(kinds: dict[str, Path])
         types |= {layer["service"]["layerType"] for layer in desc["layers"]}
     assert types == {"ptm", "hsh", "svbrdf", "image"}
     pages = manifest(kinds["overlay"])["items"][0]["annotations"]
-    assert [a["motivation"] for a in pages[0]["items"]] == ["supplementing"] * 2
+    assert [a["motivation"] for a in pages[0]["items"]] == ["commenting"] * 2
     items = manifest(kinds["multi"])["items"][0]["items"][0]["items"][0]["body"]["items"]
     layers = [i for i in items if any(s["type"] == "LanternaRelight" for s in i["service"])]
     assert len(layers) == 5  # (and ARCHiOx's albedo + normal items, test_lightingmap.py)
@@ -114,3 +114,19 @@ def test_a_broken_manifest_is_reported(kinds: dict[str, Path], name: str) -> Non
     errors = validate_manifest(doc)
     assert errors, f"{name}: not reported"
     assert any(expected in e for e in errors), errors
+
+
+@pytest.mark.parametrize("kind", KINDS)
+def test_the_thumbnail_is_a_file_the_first_layers_pyramid_holds(kinds: dict[str, Path],
+                                                                 kind: str) -> None:
+    doc = manifest(kinds[kind])
+    (thumb,) = doc["thumbnail"]
+    first = doc["items"][0]["items"][0]["items"][0]["body"]["items"][0]
+    service = first["service"][0]
+    assert thumb["service"] == [service]  # the first layer's image, with its service
+    w, h = thumb["width"], thumb["height"]
+    assert {"width": w, "height": h} in service["sizes"] and max(w, h) <= 400
+    assert thumb["id"] == f"{service['id']}/full/{w},{h}/0/default.{thumb['id'][-3:]}"
+    file = kinds[kind] / "iiif" / thumb["id"].split("/iiif/", 1)[1]
+    assert file.is_file()  # no new file: an existing sizes entry
+    assert thumb["format"] == {"jpg": "image/jpeg", "png": "image/png"}[file.suffix[1:]]

@@ -98,9 +98,9 @@ def test_lanterna_json_keeps_levels_texts_and_patches(built: Path) -> None:
     assert len(overlay["fingerprint"]) == 64
     assert overlay["levels"] == [
         {"level": 0, "image": "vis_ov0", "width": W, "height": H, "short": "Strokes",
-         "long": "<p>Red <b>strokes</b></p>"},
+         "long": "<p>Red <b>strokes</b></p>", "box": drawn_extent(reference_level0())},
         {"level": 2, "image": "vis_ov2", "width": 150, "height": 100, "short": "Tower",
-         "long": "<p>The tower</p>"}]
+         "long": "<p>The tower</p>", "box": [300, 200, 64, 64]}]  # the tower patch's rectangle
     assert [p["file"] for p in overlay["patches"]] == [
         "0_90_45_20_20_0_under.png", "0_100_50_40_30_1_red stroke.png",
         "0_120_60_40_30_2_blue_box.png", "0_580_380_40_40_3_corner.png",
@@ -122,7 +122,19 @@ def test_lanterna_json_keeps_levels_texts_and_patches(built: Path) -> None:
     assert "overlay" not in json.loads((built / "layers/vis.json").read_text())
 
 
-def test_manifest_has_one_supplementing_page_per_annotated_layer(built: Path) -> None:
+def drawn_extent(rgba: np.ndarray) -> list[int]:
+    """[x, y, w, h] of the pixels with some alpha (level 0: canvas pixels)."""
+    ys, xs = np.nonzero(rgba[..., 3])
+    return [int(xs.min()), int(ys.min()), int(xs.max() - xs.min() + 1),
+            int(ys.max() - ys.min() + 1)]
+
+
+def test_level_boxes_cover_the_patches_and_are_clipped_to_the_canvas() -> None:
+    # the level-0 patches span x 90..620, y 45..420 on the 600x400 canvas (the corner is clipped)
+    assert drawn_extent(reference_level0()) == [90, 45, W - 90, H - 45]
+
+
+def test_manifest_has_one_commenting_page_per_annotated_layer(built: Path) -> None:
     m = json.loads((built / "manifest.json").read_text())
     canvas = m["items"][0]
     assert canvas["items"][0]["items"][0]["body"]["type"] == "Choice"  # painting unchanged
@@ -132,13 +144,16 @@ def test_manifest_has_one_supplementing_page_per_annotated_layer(built: Path) ->
     assert page["id"] == f"{BASE}/obj/canvas/1/overlays/vis"
     assert page["type"] == "AnnotationPage" and page["label"] == {"en": ["Annotations: VIS"]}
     first, second = page["items"]
-    assert first["type"] == "Annotation" and first["motivation"] == "supplementing"
+    assert first["type"] == "Annotation" and first["motivation"] == "commenting"
     assert first["label"] == {"en": ["Strokes"]}
     assert first["target"] == {
         "type": "SpecificResource", "source": {"id": canvas["id"], "type": "Canvas"},
         "selector": {"type": "FragmentSelector", "conformsTo": "http://www.w3.org/TR/media-frags/",
-                     "value": f"xywh=0,0,{W},{H}"}}
-    image, text = first["body"]
+                     "value": f"xywh=90,45,{W - 90},{H - 45}"}}  # the level's drawing
+    assert second["target"]["selector"]["value"] == "xywh=300,200,64,64"
+    image, short, text = first["body"]
+    assert short == {"id": f"{first['id']}/short", "type": "TextualBody", "value": "Strokes",
+                     "format": "text/plain", "purpose": "commenting"}
     info = json.loads((built / "iiif/vis_ov0/info.json").read_text())
     assert image == {
         "id": f"{BASE}/obj/iiif/vis_ov0/full/max/0/default.png", "type": "Image",

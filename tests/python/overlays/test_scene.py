@@ -50,7 +50,8 @@ def test_scene_overlay_levels_become_overlay_images(tmp_path: Path,
     desc = json.loads((out / "lanterna.json").read_text())
     overlay = desc["layers"][0]["overlay"]
     assert overlay["levels"] == [{"level": 1, "image": "VIS_ov1", "width": 260, "height": 150,
-                                  "short": "one", "long": "<p>1</p>"}]
+                                  "short": "one", "long": "<p>1</p>",
+                                  "box": [60, 20, 60, 20]}]  # level-1 pixels 30:60, 10:20
     assert overlay["shortInfo"] == ["one", "two", "three"]  # the scene's texts are all kept
     assert overlay["range"] == [1, 3] and overlay["source"] == "scene"
     np.testing.assert_array_equal(read_image(out, "VIS_ov1"), level1)
@@ -58,8 +59,9 @@ def test_scene_overlay_levels_become_overlay_images(tmp_path: Path,
     (page,) = m["items"][0]["annotations"]
     (anno,) = page["items"]
     assert anno["label"] == {"en": ["one"]}
+    assert anno["target"]["selector"]["value"] == "xywh=60,20,60,20"
     assert anno["body"][0]["service"][1]["level"] == 1
-    assert anno["body"][1]["value"] == "<p>1</p>"
+    assert [b["value"] for b in anno["body"][1:]] == ["one", "<p>1</p>"]  # short, long
 
 
 def test_scene_without_overlay_images_still_imports(tmp_path: Path,
