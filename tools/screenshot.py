@@ -11,7 +11,11 @@ Builds the demo dataset if it is missing. Writes, in ``--out-dir``:
 - ``screenshot-annotate.png``: the advanced viewer (1280×800) annotating the gold rosette under
   specular enhancement, zoomed in to level 0: a drawing in progress (not uploaded: the demo is
   left as it was), the toolbox, the layer's annotations in the panel. The server allows
-  authoring for it (a throw-away token).
+  authoring for it (a throw-away token);
+- ``screenshot-mirador.png``: Mirador 4 with the Lanterna plugins (1440×900), two windows of the
+  demo side by side (a comparison): the left one under the first base preset with its Lanterna
+  controls open, the right one on the infrared band with Mirador's annotation panel listing the
+  overlay levels.
 """
 
 from __future__ import annotations
@@ -36,6 +40,33 @@ REPO = Path(__file__).resolve().parents[1]
 DRIVER = REPO / "tests" / "browser" / "page-script.mjs"
 READY = "() => window.lanterna !== undefined && window.lanterna.manifest !== null"
 SETTLE = "async () => { await window.lanterna.whenFullyLoaded(); return true; }"
+
+
+#: Both Mirador windows have their Lanterna viewer, ready.
+MIRADOR_READY = """() => {
+  const ids = Object.keys(window.miradorInstance?.store.getState().windows ?? {});
+  return ids.length === 2 && ids.every((id) => window.Mirador.lanternaWindowViewer(id)?.manifest);
+}"""
+#: Left: the first base preset, the Lanterna controls; right: the infrared band, the annotations.
+MIRADOR_SCENE = """async () => {
+  const M = window.Mirador, store = window.miradorInstance.store;
+  const [left, right] = Object.keys(store.getState().windows);
+  const a = M.lanternaWindowViewer(left), b = M.lanternaWindowViewer(right);
+  await a.applyPreset('base', 0);
+  const ir = b.getLayers().find((l) => /infrared|IR/i.test(l.label)) ?? b.getLayers()[0];
+  await b.setActiveLayer(ir.id);
+  store.dispatch(M.addCompanionWindow(left, { content: 'lanterna', position: 'right' }));
+  store.dispatch(M.addCompanionWindow(right, { content: 'annotations', position: 'left' }));
+  return true;
+}"""
+MIRADOR_SETTLE = """async () => {
+  const store = window.miradorInstance.store;
+  await new Promise((r) => setTimeout(r, 500));
+  for (const id of Object.keys(store.getState().windows)) {
+    await window.Mirador.lanternaWindowViewer(id).whenFullyLoaded();
+  }
+  return true;
+}"""
 
 
 def _shoot(spec: dict[str, Any], tmp: Path) -> None:
@@ -140,10 +171,21 @@ def main() -> int:
                     {"screenshot": str(out / "screenshot-annotate.png")},
                 ],
             }, Path(tmp))
+            _shoot({
+                "url": f"{base}/viewer/mirador.html?manifest={manifest}&manifest={manifest}",
+                "viewport": {"width": 1440, "height": 900},
+                "steps": [
+                    {"waitFor": MIRADOR_READY},
+                    {"eval": MIRADOR_SCENE},
+                    {"waitFor": "() => document.querySelectorAll('li[annotationid]').length > 0"},
+                    {"eval": MIRADOR_SETTLE},
+                    {"screenshot": str(out / "screenshot-mirador.png")},
+                ],
+            }, Path(tmp))
     finally:
         server.shutdown()
     for name in ("screenshot.png", "screenshot-simple.png", "screenshot-phone.png",
-                 "screenshot-annotate.png"):
+                 "screenshot-annotate.png", "screenshot-mirador.png"):
         print(f"wrote {out / name}")
     return 0
 
