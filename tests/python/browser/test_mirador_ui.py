@@ -1,9 +1,10 @@
 """Real Chromium, real Mirador 4 (the ready bundle, /viewer/mirador.html): the window's Lanterna
 controls and Mirador's annotation panel driving our view (docs/mirador.md).
 
-A two-layer PTM dataset whose canvas carries, besides its painting, an annotation page in the
-encoding stock viewers list (an overlay level with ``commenting`` and its drawing's bounding box as
-an ``xywh`` target, contract §2; and a plain note on a region), written here. The top bar's
+A two-layer PTM dataset whose rgb layer has an overlay built as ``lanterna annotate build``
+builds it (the manifest lists its level motivated ``commenting``, targeting its drawing's bounding
+box), and whose canvas also carries a page with a plain note on a region, as another tool would
+add it. The top bar's
 "Lanterna controls" button opens the companion window with our panel; its mode menu and light
 buttons change our pixels (the light's frame matches the numpy relight within 2/255); selecting an
 annotation in Mirador's own annotation panel fits our view to its region (``getImageRegion``),
@@ -27,8 +28,10 @@ import pyvips
 
 from lanterna.tiler.dataset.layers import add_ptm_layer
 from lanterna.tiler.dataset.writer import DatasetWriter
+from lanterna.tiler.overlays.build import build_overlays
+from tests.python.fixtures.mirador import check_ptm_frame, write_plain_manifest
 from tests.python.fixtures.page_script import evaluate, frame, run_page
-from tests.python.fixtures.ptm_relight import TOLERANCE, H, W, numpy_relight, smooth_random_ptm
+from tests.python.fixtures.ptm_relight import H, W, smooth_random_ptm
 from tests.python.fixtures.servers import LiveServer
 
 pytestmark = pytest.mark.browser
@@ -100,26 +103,27 @@ class Site:
 
 
 def notes_page() -> dict[str, Any]:
-    """The annotation page a manifest would carry in the encoding of contract §2."""
-    overlay = {
-        "id": OVERLAY_ID, "type": "Annotation", "motivation": "commenting",
-        "target": {"type": "SpecificResource", "source": CANVAS, "selector": {
-            "type": "FragmentSelector", "conformsTo": "http://www.w3.org/TR/media-frags/",
-            "value": "xywh=" + ",".join(map(str, OVERLAY_BOX))}},
-        "body": [
-            {"id": f"{BASE}/iiif/lrgb_preview/full/max/0/default.png", "type": "Image",
-             "format": "image/png", "width": W, "height": H,
-             "service": [{"id": f"{BASE}/iiif/lrgb_preview", "type": "ImageService3",
-                          "profile": "level0"},
-                         {"type": "LanternaOverlayLevel", "profile": "urn:lanterna:overlay:1",
-                          "layer": "rgb", "level": 0}]},
-            {"type": "TextualBody", "value": "Underdrawing", "format": "text/plain",
-             "purpose": "commenting"}]}
+    """A page of one plain note (a region and a text), as another tool would add it."""
     note = {
         "id": NOTE_ID, "type": "Annotation", "motivation": "commenting",
         "body": {"type": "TextualBody", "value": "A chip in the rim", "format": "text/plain"},
         "target": f"{CANVAS}#xywh=" + ",".join(map(str, NOTE_BOX))}
-    return {"id": f"{CANVAS}/notes", "type": "AnnotationPage", "items": [overlay, note]}
+    return {"id": f"{CANVAS}/notes", "type": "AnnotationPage", "items": [note]}
+
+
+def build_overlay(ds: Path, scratch: Path) -> None:
+    """Layer rgb's overlay, built as `lanterna annotate build` does: one level-0 drawing covering
+    OVERLAY_BOX, short text "Underdrawing" (the manifest then lists it, motivated ``commenting``,
+    targeting the drawing's own box: docs/annotations.md)."""
+    x, y, w, h = OVERLAY_BOX
+    scratch.mkdir(parents=True)
+    drawing = np.zeros((h, w, 4), np.uint8)
+    drawing[..., 0], drawing[..., 3] = 220, 180
+    pyvips.Image.new_from_array(drawing).copy(interpretation="srgb").write_to_file(
+        str(scratch / f"0_{x}_{y}_{w}_{h}_0_underdrawing.png"))
+    report = build_overlays(ds, "rgb", patches_dir=scratch,
+                            texts={"0": {"short": "Underdrawing"}})
+    assert not report.errors, report.errors
 
 
 def write_patch_page(version: Path) -> dict[str, Any]:
@@ -147,21 +151,6 @@ def write_patch_page(version: Path) -> dict[str, Any]:
     return {"id": page_id, "type": "AnnotationPage"}
 
 
-def write_plain_manifest(path: Path, base: str, service: str) -> None:
-    """A plain IIIF Presentation 3 manifest: one canvas painted by an image with a plain service."""
-    path.parent.mkdir(parents=True, exist_ok=True)
-    image = {"id": f"{service}/full/max/0/default.jpg", "type": "Image", "format": "image/jpeg",
-             "width": W, "height": H,
-             "service": [{"id": service, "type": "ImageService3", "profile": "level0"}]}
-    canvas = {"id": f"{base}/canvas/1", "type": "Canvas", "width": W, "height": H,
-              "items": [{"id": f"{base}/canvas/1/page", "type": "AnnotationPage", "items": [
-                  {"id": f"{base}/canvas/1/page/1", "type": "Annotation", "motivation": "painting",
-                   "body": image, "target": f"{base}/canvas/1"}]}]}
-    path.write_text(json.dumps({
-        "@context": "http://iiif.io/api/presentation/3/context.json", "id": f"{base}/manifest.json",
-        "type": "Manifest", "label": {"en": ["A plain image"]}, "items": [canvas]}))
-
-
 @pytest.fixture(scope="module")
 def site(tmp_path_factory: pytest.TempPathFactory) -> Iterator[Site]:
     root = tmp_path_factory.mktemp("mirador-ui") / "root"
@@ -169,6 +158,7 @@ def site(tmp_path_factory: pytest.TempPathFactory) -> Iterator[Site]:
         add_ptm_layer(ds, smooth_random_ptm("lrgb", seed=7), layer_id="lrgb", label="LRGB")
         add_ptm_layer(ds, smooth_random_ptm("rgb", seed=8), layer_id="rgb", label="RGB")
         blocks = {layer["id"]: ds.layer_service(layer) for layer in ds.layers}
+    build_overlay(root / "obj", root.parent / "patches")
     version = (root / "obj").resolve()
     manifest_path = version / "manifest.json"
     manifest = json.loads(manifest_path.read_text())
@@ -233,7 +223,7 @@ def run(site: Site, tmp_path_factory: pytest.TempPathFactory) -> list[Any]:
         # 16: Mirador's annotation panel, opened from its side bar, lists both annotations
         {"click": 'button[aria-label="Toggle sidebar"]'},
         {"click": '[aria-label="Annotations"]'},
-        {"waitFor": "() => document.querySelectorAll('li[annotationid]').length === 3"},
+        {"waitFor": "() => document.querySelectorAll('li[annotationid]').length === 4"},
         evaluate("() => [...document.querySelectorAll('li[annotationid]')].map((li) => "
                  "[li.getAttribute('annotationid'), li.textContent.trim()])"),
         # 20: select the overlay level, then the note
@@ -258,21 +248,8 @@ def run(site: Site, tmp_path_factory: pytest.TempPathFactory) -> list[Any]:
 
 def relit(site: Site, layer: str, value: dict[str, Any]) -> npt.NDArray[np.int16]:
     """Check the frame (1:1 from ORIGIN) against the numpy relight at its light; return its RGB."""
-    got = frame(value)
-    ox, oy = ORIGIN
-    rows, cols = min(got.shape[0], H - oy), min(got.shape[1], W - ox)
-    assert rows > 200 and cols > 200, got.shape
     light = (value["light"]["lu"], value["light"]["lv"])
-    ref = numpy_relight(site.ds, site.blocks[layer], 1, light)[oy:oy + rows, ox:ox + cols]
-    expected = np.round(ref * 255).astype(np.int16)
-    part = got[:rows, :cols, :3].astype(np.int16)
-    diff = np.abs(part - expected)
-    bad = np.argwhere(diff.max(axis=-1) > TOLERANCE)
-    assert bad.size == 0, (
-        f"{layer} light={light}: {len(bad)} pixels off by up to {diff.max()}/255, first at "
-        f"(row, col) {tuple(bad[0])}: got {part[tuple(bad[0])]}, "
-        f"expected {expected[tuple(bad[0])]}")
-    return part
+    return check_ptm_frame(site.ds, site.blocks[layer], light, frame(value), ORIGIN)
 
 
 def test_the_top_bar_button_opens_the_controls(run: list[Any]) -> None:
@@ -305,9 +282,14 @@ def test_the_light_buttons_relight_our_view(site: Site, run: list[Any]) -> None:
 
 
 def test_miradors_panel_lists_our_annotations(site: Site, run: list[Any]) -> None:
-    assert dict(run[19]) == {served(OVERLAY_ID, site): "Underdrawing",
-                             served(NOTE_ID, site): "A chip in the rim",
-                             served(PATCH_ID, site): "Tool mark"}
+    listed = dict(run[19])
+    # the overlay's drawing is also the first patch of rgb's store: a W3C annotation without text
+    drawing = served(f"{BASE}/annotations/rgb/0_{'_'.join(map(str, OVERLAY_BOX))}_0_underdrawing"
+                     ".json", site)
+    assert listed == {served(OVERLAY_ID, site): "Underdrawing",
+                      served(NOTE_ID, site): "A chip in the rim",
+                      served(PATCH_ID, site): "Tool mark", drawing: listed.get(drawing)}
+    assert drawing in listed
 
 
 def fits(region: list[float], box: tuple[int, int, int, int]) -> None:

@@ -12,20 +12,20 @@ from __future__ import annotations
 import json
 import re
 from collections.abc import Callable, Iterator
-from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
 import numpy as np
-import numpy.typing as npt
 import pytest
 
 from lanterna.tiler.dataset.layers import add_planes_layer
 from lanterna.tiler.dataset.writer import DatasetWriter
 from lanterna.tiler.formats.pca_model import PcaBasis, plane_channel_names
 from lanterna.tiler.formats.planes import PlaneGroup, PlaneLayer
-from lanterna.tiler.render import PARAMETERS, applicable_modes, level_channels, render
+from lanterna.tiler.render import applicable_modes
 from tests.python.fixtures import browser
+from tests.python.fixtures.mode_frames import ModeRun as Run
+from tests.python.fixtures.mode_frames import mode_frames, report
 from tests.python.fixtures.servers import LiveServer
 
 pytestmark = pytest.mark.browser
@@ -89,47 +89,13 @@ def build(out: Path) -> dict[str, dict[str, Any]]:
         return {layer["id"]: ds.layer_service(layer) for layer in ds.layers}
 
 
-@dataclass
-class Run:
-    """Frame and reference of every (layer, mode, light)."""
-
-    blocks: dict[str, dict[str, Any]]
-    results: dict[tuple[str, str], list[tuple[tuple[float, float], npt.NDArray[np.int16],
-                                             npt.NDArray[np.int16]]]]
-
-
-def full_params() -> dict[str, float]:
-    return {name: spec[0] for name, spec in PARAMETERS.items()}
-
-
 @pytest.fixture(scope="module")
 def run(tmp_path_factory: pytest.TempPathFactory) -> Iterator[Run]:
     tmp = tmp_path_factory.mktemp("pca")
     blocks = build(tmp / "pca")
-    region = ORIGIN + VIEW
-    keys = [(lid, mode, light) for lid, block in blocks.items()
-            for mode in applicable_modes(block) for light in LIGHTS]
-    shots = [browser.Shot(light, region, tmp / f"shot{i:03d}.rgba", lid, mode, full_params())
-             for i, (lid, mode, light) in enumerate(keys)]
-    server = LiveServer(tmp)
-    try:
-        url = f"{server.url}/viewer/?manifest={server.url}/datasets/pca/manifest.json"
-        frames = browser.render(url, shots, viewport=VIEW)
-    finally:
-        server.close()
-    channels = {lid: level_channels(tmp / "pca", block, 1, region) for lid, block in blocks.items()}
-    results: dict[tuple[str, str], list[Any]] = {}
-    for (lid, mode, light), frame in zip(keys, frames, strict=True):
-        ref = render(blocks[lid], channels[lid], light, mode)
-        assert frame.shape == (VIEW[1], VIEW[0], 4), frame.shape
-        assert (frame[..., 3] == 255).all(), f"{lid} {mode}: the view must be opaque"
-        results.setdefault((lid, mode), []).append(
-            (light, frame[..., :3].astype(np.int16), np.round(ref * 255).astype(np.int16)))
+    results = mode_frames(tmp, "pca", blocks, LIGHTS, ORIGIN, VIEW, tmp)
     yield Run(blocks, results)
-    report = [f"{lid + '/' + mode:34} max {max(int(np.abs(g - e).max()) for _, g, e in items)}"
-              f"  clipped {np.mean([((e == 0) | (e == 255)).mean() for _, _, e in items]):.2f}"
-              for (lid, mode), items in results.items()]
-    print("\n" + "\n".join(report))
+    print("\n" + report(results))
 
 
 LAYER_MODES = [(lid, mode) for lid, layer_type in [("rbf_mycc", "rbf"),

@@ -12,9 +12,7 @@ from __future__ import annotations
 
 import json
 from collections.abc import Iterator
-from dataclasses import dataclass
 from pathlib import Path
-from typing import Any
 
 import numpy as np
 import numpy.typing as npt
@@ -22,9 +20,9 @@ import pytest
 
 from lanterna.cli import main
 from lanterna.tiler.dataset.writer import read_description
-from lanterna.tiler.render import PARAMETERS, applicable_modes, level_channels, render
-from tests.python.fixtures import browser
-from tests.python.fixtures.servers import LiveServer
+from lanterna.tiler.render import applicable_modes
+from tests.python.fixtures.mode_frames import ModeRun as Run
+from tests.python.fixtures.mode_frames import mode_frames, report
 from tests.python.formats.test_relight_web import write_folder
 
 pytestmark = pytest.mark.browser
@@ -87,15 +85,6 @@ def write_relight_sh(folder: Path, rng: np.random.Generator, terms: int, colorsp
     assert json.loads((folder / "info.json").read_text())["type"] == "sh"
 
 
-@dataclass
-class Run:
-    """The imported blocks and, per (layer, mode), the frame and reference at each light."""
-
-    blocks: dict[str, dict[str, Any]]
-    results: dict[tuple[str, str], list[tuple[tuple[float, float], npt.NDArray[np.int16],
-                                             npt.NDArray[np.int16]]]]
-
-
 @pytest.fixture(scope="module")
 def run(tmp_path_factory: pytest.TempPathFactory) -> Iterator[Run]:
     tmp = tmp_path_factory.mktemp("sh")
@@ -106,30 +95,9 @@ def run(tmp_path_factory: pytest.TempPathFactory) -> Iterator[Run]:
     assert main(["import", str(tmp / "src" / "sh9"), str(tmp / "src" / "sh4"),
                  "-o", str(root / "sh")]) == 0
     blocks = {layer["id"]: layer["service"] for layer in read_description(root / "sh")["layers"]}
-    region = ORIGIN + VIEW
-    params = {name: spec[0] for name, spec in PARAMETERS.items()}
-    keys = [(lid, mode, light) for lid, block in blocks.items()
-            for mode in applicable_modes(block) for light in LIGHTS]
-    shots = [browser.Shot(light, region, tmp / f"shot{i:03d}.rgba", lid, mode, params)
-             for i, (lid, mode, light) in enumerate(keys)]
-    server = LiveServer(root)
-    try:
-        url = f"{server.url}/viewer/?manifest={server.url}/datasets/sh/manifest.json"
-        frames = browser.render(url, shots, viewport=VIEW)
-    finally:
-        server.close()
-    channels = {lid: level_channels(root / "sh", block, 1, region) for lid, block in blocks.items()}
-    results: dict[tuple[str, str], list[Any]] = {}
-    for (lid, mode, light), frame in zip(keys, frames, strict=True):
-        ref = render(blocks[lid], channels[lid], light, mode)
-        assert frame.shape == (VIEW[1], VIEW[0], 4), frame.shape
-        assert (frame[..., 3] == 255).all(), f"{lid} {mode}: the view must be opaque"
-        results.setdefault((lid, mode), []).append(
-            (light, frame[..., :3].astype(np.int16), np.round(ref * 255).astype(np.int16)))
+    results = mode_frames(root, "sh", blocks, LIGHTS, ORIGIN, VIEW, tmp)
     yield Run(blocks, results)
-    print("\n" + "\n".join(
-        f"{lid + '/' + mode:28} max {max(int(np.abs(g - e).max()) for _, g, e in items)}"
-        for (lid, mode), items in results.items()))
+    print("\n" + report(results))
 
 
 def test_the_folders_import_as_sh_layers(run: Run) -> None:
