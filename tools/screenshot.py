@@ -53,10 +53,16 @@ MIRADOR_SCENE = """async () => {
   const [left, right] = Object.keys(store.getState().windows);
   const a = M.lanternaWindowViewer(left), b = M.lanternaWindowViewer(right);
   await a.applyPreset('base', 0);
+  a.viewer.viewport.goHome(true);
   const ir = b.getLayers().find((l) => /infrared|IR/i.test(l.label)) ?? b.getLayers()[0];
   await b.setActiveLayer(ir.id);
   store.dispatch(M.addCompanionWindow(left, { content: 'lanterna', position: 'right' }));
-  store.dispatch(M.addCompanionWindow(right, { content: 'annotations', position: 'left' }));
+  store.dispatch(M.updateWindow(right, { sideBarOpen: true }));
+  let button;
+  while (!(button = [...document.querySelectorAll('button[aria-label="Annotations"]')].at(-1))) {
+    await new Promise((r) => setTimeout(r, 50));
+  }
+  button.click(); // the side bar's Annotations panel in place of "About this item"
   return true;
 }"""
 MIRADOR_SETTLE = """async () => {
@@ -177,7 +183,8 @@ def main() -> int:
                 "steps": [
                     {"waitFor": MIRADOR_READY},
                     {"eval": MIRADOR_SCENE},
-                    {"waitFor": "() => document.querySelectorAll('li[annotationid]').length > 0"},
+                    {"waitFor": "() => [...document.querySelectorAll('li[annotationid]')]"
+                                " .some((li) => li.offsetParent !== null)"},
                     {"eval": MIRADOR_SETTLE},
                     {"screenshot": str(out / "screenshot-mirador.png")},
                 ],

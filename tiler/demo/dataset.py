@@ -63,7 +63,7 @@ N_LIGHTS = 48
 #: The demo's edition, in its ``lanterna.json`` ``source``: ``lanterna demo`` and
 #: ``make screenshot`` rebuild a demo of another edition (raise it when the demo gains a layer or
 #: a preset).
-DEMO_SOURCE = "synthetic demo, edition 15"
+DEMO_SOURCE = "synthetic demo, edition 16"
 #: The demo RBF's σ (see the module docstring).
 DEMO_RBF_SIGMA = 0.2
 F32 = npt.NDArray[np.float32]

@@ -36,6 +36,16 @@ export function LanternaSwitch(props: SwitchProps): ReactElement {
   return createElement(LanternaWindowView, { ...props, lanterna, key: `${lanterna.manifestUrl} ${lanterna.canvasId}` });
 }
 
+/** Height (px) of Mirador's canvas controls along the window's bottom edge (zoom, previous/next). */
+const MIRADOR_CONTROLS_PX = 84;
+
+/** Move our bottom-corner widgets (the light disc, the annotation text box) above Mirador's controls. */
+function liftAboveMiradorControls(element: HTMLElement): void {
+  for (const widget of element.querySelectorAll<HTMLElement>('.lanterna-light-widget, .lanterna-hypertext')) {
+    widget.style.bottom = `${MIRADOR_CONTROLS_PX}px`;
+  }
+}
+
 /** One window's Lanterna viewer, created on mount and destroyed on unmount (a new canvas remounts it). */
 export function LanternaWindowView(props: SwitchProps & { readonly lanterna: LanternaCanvas }): ReactElement {
   const { windowId, lanterna: canvas } = props;
@@ -60,6 +70,7 @@ export function LanternaWindowView(props: SwitchProps & { readonly lanterna: Lan
       setError(e instanceof Error ? e.message : String(e));
       return undefined;
     }
+    liftAboveMiradorControls(element);
     let alive = true;
     lanterna.ready.then(() => {
       if (!alive) {

@@ -136,6 +136,11 @@ def one_window(site: Site, tmp_path_factory: pytest.TempPathFactory) -> dict[str
         ("windows", HELPERS),
         ("first layer", evaluate(
             "async () => { await t.readyViewers(1); return t.lv(0).getActiveLayer(); }")),
+        ("widgets", evaluate("""() => {
+          const rect = (q) => document.querySelector(q)?.getBoundingClientRect().toJSON();
+          return { disc: rect('.lanterna-mirador-canvas .lanterna-light-widget'),
+                   zoom: rect('button[aria-label="Zoom in"]') };
+        }""")),
         ("lrgb 0", evaluate(f"() => t.shot(0, {list(LIGHTS[0])})")),
         ("lrgb 1", evaluate(f"() => t.shot(0, {list(LIGHTS[1])})")),
         # Mirador's layers panel (side bar): show rgb, above lrgb in Mirador's order
@@ -208,6 +213,12 @@ def test_the_canvas_opens_in_our_viewer_and_is_relit(site: Site,
     check_relit(site, "lrgb", LIGHTS[1], one_window["lrgb 1"])
     moved = np.abs(rgb(one_window["lrgb 0"]) - rgb(one_window["lrgb 1"])).mean()
     assert moved > 5, "the light must matter"
+
+
+def test_the_light_disc_sits_above_miradors_canvas_controls(one_window: dict[str, Any]) -> None:
+    disc, zoom = one_window["widgets"]["disc"], one_window["widgets"]["zoom"]
+    assert disc is not None and zoom is not None, one_window["widgets"]
+    assert disc["bottom"] <= zoom["top"] + 0.5, f"the light disc overlaps the controls: {disc}"
 
 
 def test_miradors_layers_panel_picks_our_layer_and_opacity(site: Site,
