@@ -25,7 +25,7 @@ from lanterna.tiler.formats.planes import PlaneGroup, PlaneLayer
 from lanterna.tiler.render import applicable_modes
 from tests.python.fixtures import browser
 from tests.python.fixtures.mode_frames import ModeRun as Run
-from tests.python.fixtures.mode_frames import mode_frames, report
+from tests.python.fixtures.mode_frames import check_mode, mode_frames, report
 from tests.python.fixtures.servers import LiveServer
 
 pytestmark = pytest.mark.browser
@@ -111,16 +111,7 @@ def test_the_modes_are_hsh_s() -> None:
 
 @pytest.mark.parametrize("layer, mode", LAYER_MODES)
 def test_pca_mode_matches_the_reference(run: Run, layer: str, mode: str) -> None:
-    items = run.results[(layer, mode)]
-    assert len(items) == len(LIGHTS)
-    for light, got, expected in items:
-        diff = np.abs(got - expected)
-        bad = np.argwhere(diff.max(axis=-1) > TOLERANCE)
-        assert bad.size == 0, (
-            f"{layer}/{mode} light={light}: {len(bad)} pixels off by up to {diff.max()}/255, "
-            f"first at (row, col) {tuple(bad[0])}: got {got[tuple(bad[0])]}, "
-            f"expected {expected[tuple(bad[0])]}")
-    assert max(float(exp.std()) for _, _, exp in items) > 5, "the picture must not be flat"
+    check_mode(run.results, layer, mode, len(LIGHTS), TOLERANCE)
 
 
 def test_the_light_moves_the_colour(run: Run) -> None:

@@ -22,7 +22,7 @@ from lanterna.cli import main
 from lanterna.tiler.dataset.writer import read_description
 from lanterna.tiler.render import applicable_modes
 from tests.python.fixtures.mode_frames import ModeRun as Run
-from tests.python.fixtures.mode_frames import mode_frames, report
+from tests.python.fixtures.mode_frames import check_mode, mode_frames, report
 from tests.python.formats.test_relight_web import write_folder
 
 pytestmark = pytest.mark.browser
@@ -111,16 +111,7 @@ LAYER_MODES = [(lid, mode) for lid in ("sh9", "sh4")
 
 @pytest.mark.parametrize("layer, mode", LAYER_MODES)
 def test_sh_mode_matches_the_reference(run: Run, layer: str, mode: str) -> None:
-    items = run.results[(layer, mode)]
-    assert len(items) == len(LIGHTS)
-    for light, got, expected in items:
-        diff = np.abs(got - expected)
-        bad = np.argwhere(diff.max(axis=-1) > TOLERANCE)
-        assert bad.size == 0, (
-            f"{layer}/{mode} light={light}: {len(bad)} pixels off by up to {diff.max()}/255, "
-            f"first at (row, col) {tuple(bad[0])}: got {got[tuple(bad[0])]}, "
-            f"expected {expected[tuple(bad[0])]}")
-    assert max(float(exp.std()) for _, _, exp in items) > 5, "the picture must not be flat"
+    check_mode(run.results, layer, mode, len(LIGHTS), TOLERANCE)
 
 
 def test_the_light_moves_the_colour_the_way_the_relief_faces(run: Run) -> None:
