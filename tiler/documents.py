@@ -61,13 +61,17 @@ def read_document(path: Path, schema: str) -> dict[str, Any]:
 
 def load_json(path: Path) -> Any:
     """Parse the JSON file ``path`` (a regular file of at most :data:`MAX_DOCUMENT_BYTES`)."""
-    data = read_input(Path(path), "a JSON file", max_bytes=MAX_DOCUMENT_BYTES)
+    return parse_json(read_input(Path(path), "a JSON file", max_bytes=MAX_DOCUMENT_BYTES), path)
+
+
+def parse_json(data: bytes, source: str | Path) -> Any:
+    """Parse the JSON text ``data`` read from ``source`` (a file or a URL, for the errors)."""
     try:
         return json.loads(data.decode("utf-8"), parse_constant=_refuse_constant)
     except UnicodeDecodeError:
-        raise LanternaInputError(path, "not valid JSON (not UTF-8 text)") from None
+        raise LanternaInputError(source, "not valid JSON (not UTF-8 text)") from None
     except (ValueError, RecursionError) as err:
-        raise LanternaInputError(path, f"not valid JSON ({_first_line(err)})") from None
+        raise LanternaInputError(source, f"not valid JSON ({_first_line(err)})") from None
 
 
 def check_document(doc: Any, schema: str, source: str | Path | None) -> dict[str, Any]:

@@ -15,7 +15,6 @@ sRGB. Every problem is one line naming the manifest and the JSON path; nothing i
 
 from __future__ import annotations
 
-import json
 from collections.abc import Iterator
 from dataclasses import dataclass
 from pathlib import Path
@@ -29,7 +28,13 @@ from lanterna.tiler.dataset.layers import add_svbrdf_layer
 from lanterna.tiler.dataset.plan import LayerPlan
 from lanterna.tiler.dataset.plane_format import AUTO, PlaneFormat
 from lanterna.tiler.dataset.writer import DatasetWriter, check_identifier
-from lanterna.tiler.documents import MAX_DOCUMENT_BYTES, check_document, json_path, load_json
+from lanterna.tiler.documents import (
+    MAX_DOCUMENT_BYTES,
+    check_document,
+    json_path,
+    load_json,
+    parse_json,
+)
 from lanterna.tiler.inputs.iiif_image import ImageInfo, fetch_full, read_info
 from lanterna.tiler.inputs.maps import load_color_map, load_normal_map
 from lanterna.tiler.inputs.remote import fetch, is_url
@@ -72,11 +77,7 @@ def read_manifest(source: str | Path) -> dict[str, Any]:
     """The manifest at ``source`` (URL or file), checked against its schema."""
     if is_url(source):
         raw = fetch(str(source), "a IIIF manifest", max_bytes=MAX_DOCUMENT_BYTES, accept=_ACCEPT)
-        try:
-            doc = json.loads(raw.decode("utf-8"))
-        except (UnicodeDecodeError, ValueError, RecursionError):
-            raise LanternaInputError(source, "not valid JSON (expected a IIIF manifest)") \
-                from None
+        doc = parse_json(raw, str(source))
     else:
         doc = load_json(Path(source))
     return check_document(doc, "lightingmap-manifest", str(source))

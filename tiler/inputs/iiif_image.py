@@ -10,13 +10,12 @@ download (:data:`BYTES_PER_PIXEL` per pixel). The format is the first of the ser
 
 from __future__ import annotations
 
-import json
 import math
 from dataclasses import dataclass
 from typing import Any
 
 from lanterna.errors import LanternaInputError
-from lanterna.tiler.documents import check_document
+from lanterna.tiler.documents import check_document, parse_json
 from lanterna.tiler.limits import check_pixels
 
 from .remote import fetch
@@ -75,11 +74,7 @@ def read_info(service: str, where: str) -> ImageInfo:
     try:
         raw = fetch(url, "a IIIF info.json", max_bytes=MAX_INFO_BYTES,
                     accept=f"{_ACCEPT[3]}, {_ACCEPT[0]};q=0.9")
-        try:
-            doc = json.loads(raw.decode("utf-8"))
-        except (UnicodeDecodeError, ValueError, RecursionError):
-            raise LanternaInputError(url, "not valid JSON") from None
-        info = check_document(doc, "iiif-image-info", url)
+        info = check_document(parse_json(raw, url), "iiif-image-info", url)
         width, height = max_size(info)
         check_pixels(url, width, height)
     except LanternaInputError as err:
