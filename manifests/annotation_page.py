@@ -30,12 +30,12 @@ from urllib.parse import quote
 from lanterna.errors import LanternaInputError
 
 from .overlays import MEDIA_FRAGMENTS
+from .services import PRESENTATION_CONTEXT
 from .validate import validate_annotation_page
 
 PATCH_TYPE = "LanternaPatch"
 PATCH_PROFILE = "urn:lanterna:patch:1"
 W3C_CONTEXT = "http://www.w3.org/ns/anno.jsonld"
-PRESENTATION_CONTEXT = "http://iiif.io/api/presentation/3/context.json"
 #: W3C first, Presentation 3 last (the IIIF rule for several contexts).
 CONTEXT = [W3C_CONTEXT, PRESENTATION_CONTEXT]
 #: The texts' motivations a record may have; the drawing itself is ``highlighting``.

@@ -40,13 +40,10 @@ from .extensions import physdim_service, presets_service
 from .lightingmap import add_lighting_maps
 from .metadata import publication_properties
 from .overlays import overlay_pages
-from .services import image_service, with_plane_descriptions
+from .services import MEDIA_TYPES, image_service, with_plane_descriptions
 from .validate import validate_manifest
 
 config.configs["helpers.auto_fields.AutoLang"].auto_lang = "en"
-
-_MEDIA_TYPES = {"jpg": "image/jpeg", "png": "image/png"}
-
 
 def build_manifest(desc: dict[str, Any],
                    infos: dict[str, dict[str, Any]] | None = None) -> dict[str, Any]:
@@ -71,7 +68,7 @@ def build_manifest(desc: dict[str, Any],
         body = AnnotationBody(
             id=f"{service_url}/full/max/0/default.jpg",
             type="Image",
-            format=_MEDIA_TYPES["jpg"],
+            format=MEDIA_TYPES["jpg"],
             width=image.get("maxWidth", image["width"]),  # full/max of a large image is a
             height=image.get("maxHeight", image["height"]),  # reduced level (docs/dataset-format)
             label=layer["label"],

@@ -22,21 +22,19 @@ from __future__ import annotations
 
 from typing import Any
 
-from .services import image_id_of, image_service
+from .services import MEDIA_TYPES, PRESENTATION_CONTEXT, image_id_of, image_service
 
 LIGHTINGMAP_PROFILE = "http://iiif.io/api/extension/lightingmap"
 #: The profile ARCHiOx's viewer looks for first (a later name of the same extension).
 LIGHTINGMAP_ANNEX_PROFILE = "http://iiif.io/api/annex/services/lightingmap"
 LIGHTINGMAP_CONTEXT = "https://iiif.bodleian.ox.ac.uk/contexts/lightingmap/context.json"
 LIGHTINGMAP_TYPE = "LightingMapExtension"
-PRESENTATION_CONTEXT = "http://iiif.io/api/presentation/3/context.json"
 
 #: mapType → (the svbrdf plane group holding it, its first channel, the label's suffix).
 MAPS: dict[str, tuple[str, str, str]] = {
     "albedo": ("kd", "KD_R", "albedo"),
     "normal": ("normals", "NX", "normal map"),
 }
-_MEDIA_TYPES = {"jpg": "image/jpeg", "png": "image/png", "webp": "image/webp"}
 
 
 def lighting_map_images(layer: dict[str, Any], ds_url: str) -> dict[str, str] | None:
@@ -67,7 +65,7 @@ def lighting_map_items(desc: dict[str, Any], ds_url: str,
             items.append({
                 "id": f"{service_url}/full/max/0/default.{fmt}",
                 "type": "Image",
-                "format": _MEDIA_TYPES[fmt],
+                "format": MEDIA_TYPES[fmt],
                 "label": {"en": [f"{layer['label']} [{MAPS[map_type][2]}]"]},
                 "width": image.get("maxWidth", image["width"]),
                 "height": image.get("maxHeight", image["height"]),

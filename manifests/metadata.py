@@ -29,7 +29,7 @@ from urllib.parse import urlsplit
 
 from lanterna.errors import LanternaInputError
 
-from .services import image_service
+from .services import MEDIA_TYPES, image_service
 
 #: The keys of a ``publication`` object.
 PUBLICATION_KEYS = ("rights", "attribution", "provider", "homepage", "seeAlso", "metadata")
@@ -50,7 +50,6 @@ _MEDIA = {".jpg": "image/jpeg", ".jpeg": "image/jpeg", ".png": "image/png", ".we
           ".svg": "image/svg+xml", ".gif": "image/gif", ".json": "application/json",
           ".jsonld": "application/ld+json", ".xml": "text/xml", ".html": "text/html",
           ".htm": "text/html", ".pdf": "application/pdf", ".txt": "text/plain"}
-_EXT_MEDIA = {"jpg": "image/jpeg", "png": "image/png", "webp": "image/webp"}
 
 
 def check_rights(value: object) -> str:
@@ -187,7 +186,7 @@ def thumbnail(desc: Mapping[str, Any], infos: Mapping[str, dict[str, Any]],
     else:
         w, h = image.get("maxWidth", image["width"]), image.get("maxHeight", image["height"])
         ext, url = "jpg", f"{service_id}/full/max/0/default.jpg"
-    return {"id": url, "type": "Image", "format": _EXT_MEDIA.get(ext, "image/jpeg"),
+    return {"id": url, "type": "Image", "format": MEDIA_TYPES.get(ext, MEDIA_TYPES["jpg"]),
             "width": w, "height": h, "service": [image_service(service_id, info)]}
 
 

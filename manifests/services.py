@@ -14,6 +14,11 @@ from __future__ import annotations
 import copy
 from typing import Any
 
+#: The media type of each tile format a dataset's images are stored in (``images[id].format``).
+MEDIA_TYPES = {"jpg": "image/jpeg", "png": "image/png", "webp": "image/webp"}
+#: The IIIF Presentation 3 JSON-LD context.
+PRESENTATION_CONTEXT = "http://iiif.io/api/presentation/3/context.json"
+
 #: The keys of an ``info.json`` a manifest's image service embeds (when the info.json has them).
 DESCRIPTION_KEYS = ("profile", "width", "height", "maxWidth", "maxHeight", "sizes", "tiles",
                     "preferredFormats", "extraFormats")
