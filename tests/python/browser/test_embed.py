@@ -24,6 +24,7 @@ import pyvips
 from lanterna.tiler.dataset.layers import add_ptm_layer
 from lanterna.tiler.dataset.writer import DatasetWriter
 from tests.python.fixtures.page_script import FRAME, evaluate, frame, run_page
+from tests.python.fixtures.pixels import assert_pixels_close
 from tests.python.fixtures.ptm_relight import TOLERANCE, H, W, numpy_relight, smooth_random_ptm
 from tests.python.fixtures.servers import lanterna_serve
 
@@ -147,11 +148,7 @@ def assert_matches(got: npt.NDArray[np.uint8], expected: npt.NDArray[np.int16], 
     """The frame equals the reference within :data:`TOLERANCE`, and is opaque."""
     assert got.shape[:2] == expected.shape[:2]
     assert (got[..., 3] == 255).all(), f"{what}: the image area must be opaque"
-    diff = np.abs(got[..., :3].astype(np.int16) - expected)
-    bad = np.argwhere(diff.max(axis=-1) > TOLERANCE)
-    assert bad.size == 0, (f"{what}: {len(bad)} pixels off by up to {diff.max()}/255, first at "
-                           f"{tuple(bad[0])}: got {got[tuple(bad[0])][:3]}, "
-                           f"expected {expected[tuple(bad[0])]}")
+    assert_pixels_close(got, expected, TOLERANCE, what)
 
 
 def test_the_pages_own_viewer_gets_the_lanterna_drawer_and_layer(run: dict[str, Any]) -> None:

@@ -20,6 +20,7 @@ import pytest
 from lanterna.tiler.demo.dataset import build_demo
 from lanterna.tiler.render import level_channels, render
 from tests.python.fixtures.page_script import evaluate, frame, run_page
+from tests.python.fixtures.pixels import assert_pixels_close
 from tests.python.fixtures.presets import read_json
 from tests.python.fixtures.servers import LiveServer
 
@@ -103,10 +104,7 @@ def test_the_demo_layer_is_relit_as_the_reference_renders_it(
         part = got[:height, :width, :3].astype(np.int16)
         assert (got[:height, :width, 3] == 255).all(), f"{layer}: the image must be opaque"
         expected = np.round(np.clip(render(block, channels, light, "color"), 0, 1) * 255)
-        diff = np.abs(part - expected.astype(np.int16))
-        assert diff.max() <= TOLERANCE, (
-            f"{layer} light={light}: {(diff.max(axis=-1) > TOLERANCE).sum()} pixels off by up to "
-            f"{diff.max()}/255")
+        assert_pixels_close(part, expected, TOLERANCE, f"{layer} light={light}")
         assert float(expected.std()) > 5, "the picture must not be flat"
         got_by_light.append(part)
     assert np.abs(got_by_light[0] - got_by_light[1]).mean() > 3, "the light must matter"
