@@ -22,11 +22,9 @@ import numpy as np
 import numpy.typing as npt
 import pytest
 
-from lanterna.tiler.dataset.layers import add_ptm_layer
-from lanterna.tiler.dataset.writer import DatasetWriter
-from tests.python.fixtures.mirador import check_ptm_frame, write_plain_manifest
+from tests.python.fixtures.mirador import check_ptm_frame, write_plain_manifest, write_two_ptms
 from tests.python.fixtures.page_script import evaluate, frame, run_page
-from tests.python.fixtures.ptm_relight import H, W, smooth_random_ptm
+from tests.python.fixtures.ptm_relight import H, W
 from tests.python.fixtures.servers import LiveServer
 
 pytestmark = pytest.mark.browser
@@ -88,10 +86,7 @@ class Site:
 @pytest.fixture(scope="module")
 def site(tmp_path_factory: pytest.TempPathFactory) -> Iterator[Site]:
     root = tmp_path_factory.mktemp("mirador") / "root"
-    with DatasetWriter(root / "obj", name="obj", label="Two PTMs", width=W, height=H) as ds:
-        add_ptm_layer(ds, smooth_random_ptm("lrgb", seed=7), layer_id="lrgb", label="LRGB")
-        add_ptm_layer(ds, smooth_random_ptm("rgb", seed=8), layer_id="rgb", label="RGB")
-        blocks = {layer["id"]: ds.layer_service(layer) for layer in ds.layers}
+    blocks = write_two_ptms(root / "obj")
     server = LiveServer(root)
     try:
         base = f"{server.url}/datasets/obj"
