@@ -39,6 +39,12 @@ export interface CreateViewerOptions {
   hypertext?: boolean;
   /** Show the annotation overlays. @default true */
   overlays?: boolean;
+  /**
+   * Space (CSS px) kept free along the viewer's bottom edge for the host page's own controls
+   * (Mirador's zoom buttons): the light widget, the annotation text box and the notices sit above it.
+   * @default 0
+   */
+  bottomInset?: number;
   /** Extra OpenSeadragon options (the drawer, navigator and tile sources are set by Lanterna). */
   osd?: Partial<OpenSeadragon.Options>;
   /** `fetch` options for the manifest and info.json requests. */

@@ -37,14 +37,7 @@ export function LanternaSwitch(props: SwitchProps): ReactElement {
 }
 
 /** Height (px) of Mirador's canvas controls along the window's bottom edge (zoom, previous/next). */
-const MIRADOR_CONTROLS_PX = 84;
-
-/** Move our bottom-corner widgets (the light disc, the annotation text box) above Mirador's controls. */
-function liftAboveMiradorControls(element: HTMLElement): void {
-  for (const widget of element.querySelectorAll<HTMLElement>('.lanterna-light-widget, .lanterna-hypertext')) {
-    widget.style.bottom = `${MIRADOR_CONTROLS_PX}px`;
-  }
-}
+const MIRADOR_CONTROLS_PX = 72;
 
 /** One window's Lanterna viewer, created on mount and destroyed on unmount (a new canvas remounts it). */
 export function LanternaWindowView(props: SwitchProps & { readonly lanterna: LanternaCanvas }): ReactElement {
@@ -65,12 +58,13 @@ export function LanternaWindowView(props: SwitchProps & { readonly lanterna: Lan
     const layer = canvas.layers.find((l) => l.imageId === top?.imageId)?.id;
     let lanterna: LanternaViewer;
     try {
-      lanterna = createViewer({ element, manifest: canvas.manifestUrl, mode: 'pan', ...(layer ? { layer } : {}) });
+      lanterna = createViewer({
+        element, manifest: canvas.manifestUrl, mode: 'pan', bottomInset: MIRADOR_CONTROLS_PX,
+        ...(layer ? { layer } : {}) });
     } catch (e: unknown) {
       setError(e instanceof Error ? e.message : String(e));
       return undefined;
     }
-    liftAboveMiradorControls(element);
     let alive = true;
     lanterna.ready.then(() => {
       if (!alive) {

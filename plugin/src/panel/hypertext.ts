@@ -18,14 +18,14 @@ export interface HypertextWidget {
 /** The text shown at a level without an overlay image. */
 export const NO_ANNOTATION_TEXT = 'No annotation at this level';
 
-/** Create the widget inside `parent` (bottom-right corner). */
-export function createHypertext(parent: HTMLElement): HypertextWidget {
+/** Create the widget inside `parent` (bottom-right corner, `bottom` CSS px above its bottom edge). */
+export function createHypertext(parent: HTMLElement, bottom = 12): HypertextWidget {
   const box = document.createElement('section');
   box.className = 'lanterna-hypertext';
   box.setAttribute('aria-label', 'Annotation');
   box.setAttribute('aria-live', 'polite');
   Object.assign(box.style, {
-    position: 'absolute', right: '12px', bottom: '12px', zIndex: '10', maxWidth: 'min(360px, 60%)',
+    position: 'absolute', right: '12px', bottom: `${bottom}px`, zIndex: '10', maxWidth: 'min(360px, 60%)',
     maxHeight: '45%', overflow: 'auto', boxSizing: 'border-box', padding: '8px 12px', borderRadius: '6px',
     background: 'rgba(20, 20, 20, 0.82)', border: '1px solid #444', color: '#eee',
     font: '13px system-ui, sans-serif', lineHeight: '1.4',

@@ -20,6 +20,8 @@ export interface LightWidgetOptions {
   setLight(light: Light): void;
   /** Diameter in CSS px. @default 96 */
   size?: number;
+  /** Distance from the parent's bottom edge, CSS px. @default 12 */
+  bottom?: number;
 }
 
 const KEYS: Readonly<Record<string, NudgeDirection>> = {
@@ -56,7 +58,7 @@ export function createLightWidget(parent: HTMLElement, options: LightWidgetOptio
   disc.setAttribute('aria-roledescription', 'light direction');
   disc.title = 'Light direction: drag here, or focus and use the arrow keys';
   Object.assign(disc.style, {
-    position: 'absolute', left: '12px', bottom: '12px', width: `${size}px`, height: `${size}px`,
+    position: 'absolute', left: '12px', bottom: `${options.bottom ?? 12}px`, width: `${size}px`, height: `${size}px`,
     borderRadius: '50%', boxSizing: 'border-box', zIndex: '10', cursor: 'crosshair', touchAction: 'none',
     background: 'radial-gradient(circle at 50% 50%, #666 0%, #333 60%, #151515 100%)',
     border: '1px solid #aaa', boxShadow: '0 1px 6px rgba(0,0,0,0.6)', outlineOffset: '3px',

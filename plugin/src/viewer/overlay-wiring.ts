@@ -16,6 +16,8 @@ export interface OverlayWiringOptions {
   readonly visible: boolean;
   /** Whether to show the hypertext widget. */
   readonly hypertext: boolean;
+  /** The hypertext widget's distance from the viewer's bottom edge, CSS px. */
+  readonly bottom: number;
   /** `fetch` options for the info.json requests. */
   readonly fetchInit?: RequestInit;
   /** info.json documents already requested. */
@@ -44,7 +46,7 @@ export class OverlayWiring {
       register: (item, order) => { options.register(item, order); },
       onError: (error) => { options.onError(error); },
     });
-    this.#hypertext = options.hypertext ? createHypertext(viewer.element) : null;
+    this.#hypertext = options.hypertext ? createHypertext(viewer.element, options.bottom) : null;
   }
 
   /** Whether overlays are shown. */

@@ -97,13 +97,18 @@ export function wireViewer(viewer: OpenSeadragon.Viewer, options: AttachLanterna
     viewer.forceRedraw();
     notify();
   };
+  // The corner widgets and the notices sit above the host's controls along the bottom edge.
+  const inset = options.bottomInset ?? 0;
   const widget: LightWidget | null = options.lightIndicator === false ? null : createLightWidget(viewer.element, {
+    bottom: 12 + inset,
     getLight: () => light,
     setLight: (l) => { applyLight(l); },
   });
 
   // Above the light widget (12 px from the bottom, 96 px high), if there is one.
-  const notices = new ViewerNotices(viewer, { show: options.notices !== false, bottom: widget ? 120 : 12, onChange: notify });
+  const notices = new ViewerNotices(viewer, {
+    show: options.notices !== false, bottom: (widget ? 120 : 12) + inset, onChange: notify,
+  });
   const reportError = (error: unknown): void => {
     if (destroyed) {
       return; // e.g. an item that was still opening
@@ -152,6 +157,7 @@ export function wireViewer(viewer: OpenSeadragon.Viewer, options: AttachLanterna
   const overlays = new OverlayWiring(viewer, {
     visible: options.overlays ?? true,
     hypertext: options.hypertext !== false,
+    bottom: 12 + inset,
     fetchInit: options.fetchInit,
     infoCache,
     wholeLevelMaxSide,
