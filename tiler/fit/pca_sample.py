@@ -13,12 +13,13 @@ pixels), plus one band.
 from __future__ import annotations
 
 from collections.abc import Callable
+from concurrent.futures import Executor, ThreadPoolExecutor
 from typing import Any
 
 import numpy as np
 import numpy.typing as npt
 
-from lanterna.tiler.inputs.stack import StackReader, to_unit
+from lanterna.tiler.inputs.stack import DECODE_THREADS, StackReader, to_unit
 from lanterna.tiler.progress import Progress
 
 #: Most pixels sampled (Relight's ``nsamples``, 2^16).
@@ -50,28 +51,30 @@ def sample_pixels(images: Any, band_rows: int, *, budget: int = SAMPLE_BYTES,
     chosen = np.sort(np.random.default_rng(SAMPLE_SEED).choice(h * w, size, replace=False))
     out = np.empty((size, n, 3), np.float32)
     bar = progress("sampling pixels for the PCA basis", h) if progress else None
-    for y0 in range(0, h, band_rows):
-        y1 = min(h, y0 + band_rows)
-        a, b = np.searchsorted(chosen, [y0 * w, y1 * w])
-        if b > a:
-            rows, cols = np.divmod(chosen[a:b], w)
-            _take(images, y0, y1, rows - y0, cols, out[a:b])
-        if bar:
-            bar.update(y1)
+    with ThreadPoolExecutor(max_workers=DECODE_THREADS,
+                            thread_name_prefix="lanterna-decode") as pool:
+        for y0 in range(0, h, band_rows):
+            y1 = min(h, y0 + band_rows)
+            a, b = np.searchsorted(chosen, [y0 * w, y1 * w])
+            if b > a:
+                rows, cols = np.divmod(chosen[a:b], w)
+                _take(images, y0, y1, rows - y0, cols, out[a:b], pool)
+            if bar:
+                bar.update(y1)
     if hasattr(images, "close"):
         images.close()  # the next pass starts from the top again
     return out
 
 
 def _take(images: Any, y0: int, y1: int, rows: npt.NDArray[np.intp],
-          cols: npt.NDArray[np.intp], out: npt.NDArray[np.float32]) -> None:
+          cols: npt.NDArray[np.intp], out: npt.NDArray[np.float32], pool: Executor) -> None:
     """``out (s, n, 3)`` = the pixels ``(rows, cols)`` of band ``y0:y1`` of every light.
 
-    From a :class:`~lanterna.tiler.inputs.stack.StackReader` the band stays as decoded and only
-    the chosen pixels become float (``to_unit``: the values of ``images[:, y0:y1]``, a few
-    hundred pixels of a band instead of all of it)."""
+    From a :class:`~lanterna.tiler.inputs.stack.StackReader` the band stays as decoded (its
+    files decoded in ``pool``'s threads) and only the chosen pixels become float (``to_unit``:
+    the values of ``images[:, y0:y1]``, a few hundred pixels of a band instead of all of it)."""
     if not isinstance(images, StackReader):
         out[...] = np.asarray(images[:, y0:y1], np.float32)[:, rows, cols].transpose(1, 0, 2)
         return
-    for k, (band, full_scale) in enumerate(images.native_rows(y0, y1)):
+    for k, (band, full_scale) in enumerate(images.native_rows(y0, y1, pool)):
         to_unit(band[rows, cols], full_scale, out[:, k])

@@ -17,6 +17,7 @@ from lanterna.tiler.dataset import layers
 from lanterna.tiler.dataset.layers import add_hsh_layer, add_ptm_layer
 from lanterna.tiler.dataset.writer import DatasetWriter
 from lanterna.tiler.fit import run as fit_run
+from lanterna.tiler.fit.engine import fit_stream
 from lanterna.tiler.fit.models import model_table
 from lanterna.tiler.fit.run import fit_collection
 from lanterna.tiler.formats.layouts import encode_normals
@@ -196,3 +197,40 @@ def test_wide_collections_are_read_from_tiled_copies_with_the_same_result(
                          for i, f in enumerate(files[:3])], reopen=True)
     assert tiled.decoder_bytes() == 0
     assert np.array_equal(tiled[:, 500:537], load_stack(files[:3])[:, 500:537])
+
+
+def test_bands_as_decoded_in_parallel_equal_the_float_bands(
+        collection: tuple[list[Path], npt.NDArray[np.float64]], tmp_path: Path) -> None:
+    """A band copied as decoded, its files decoded by a pool of threads, divided by the returned
+    divisor, is the float band; a collection mixing sample formats has no common one, is read
+    as float, and fits as the same collection all 8-bit does."""
+    from concurrent.futures import ThreadPoolExecutor
+
+    files, lights = collection
+    full = load_stack(files)
+    reader = StackReader(files)
+    assert reader.native_dtype() == np.uint8
+    with ThreadPoolExecutor(max_workers=3) as pool:
+        for y0 in range(0, H, 211):
+            y1 = min(H, y0 + 211)
+            band = np.zeros((N, y1 - y0, W, 3), np.uint8)
+            div = reader.band_into(y0, y1, band, pool if y0 % 2 else None)
+            assert div == 255.0
+            assert np.array_equal(band.astype(np.float32) / np.float32(div), full[:, y0:y1])
+    wide = tmp_path / "sixteen.png"  # x · 257 / 65535 is x / 255: the same floats
+    (pyvips.Image.new_from_file(str(files[1])).cast("ushort") * 257).cast("ushort") \
+        .pngsave(str(wide))
+    mixed = StackReader([files[0], wide, *files[2:]])
+    assert mixed.native_dtype() is None
+    assert np.array_equal(mixed[:, 40:77], full[:, 40:77])
+    (tmp_path / "a").mkdir()
+    (tmp_path / "b").mkdir()
+    a = fit_stream(mixed, lights, ["ptm", "hsh"], tmp_path / "a", band_rows=BAND,
+                   holdout_every=4)
+    b = fit_stream(StackReader(files), lights, ["ptm", "hsh"], tmp_path / "b", band_rows=BAND,
+                   holdout_every=4)
+    assert a.quality == b.quality
+    for key in ("ptm", "hsh"):
+        for ga, gb in zip(a.layers[key].groups, b.layers[key].groups, strict=True):
+            assert ga.scale == gb.scale and ga.bias == gb.bias
+            assert np.array_equal(ga.data.rows(0, H), gb.data.rows(0, H))
