@@ -15,6 +15,7 @@ import numpy.typing as npt
 from lanterna.tiler.formats.hsh_basis import hsh_weights
 from lanterna.tiler.formats.ptm_model import ptm_weights
 
+from .linear_kernel import linear_band
 from .lrgb_kernel import lrgb_band_compiled
 from .normals import ITERATIONS, RANK_WINDOW, SHADOW_FRACTION, solve_normals_band
 from .ward import GLOSS_LIMITS, Ward, fit_ward, predict_ward, quantize_ward
@@ -30,10 +31,14 @@ IRLS_ITERATIONS = ITERATIONS
 
 
 def _project(pinv: npt.NDArray[np.float32], band: Band) -> npt.NDArray[np.float32]:
-    """``(K, N) @ (N, b, W, 3)`` as one BLAS product, returned ``(b, W, 3, K)`` (a view)."""
+    """``(K, N) @ (N, b, W, 3)``, returned ``(b, W, 3, K)`` (a view): the compiled product the
+    streamed fit makes (:func:`~.linear_kernel.linear_band`), so whole-image and streamed fits
+    agree bit for bit."""
     n, b, w, c = band.shape
     flat = np.ascontiguousarray(band, np.float32).reshape(n, -1)
-    return np.moveaxis((pinv @ flat).reshape(-1, b, w, c), 0, -1)
+    out = np.empty((pinv.shape[0], flat.shape[1]), np.float32)
+    linear_band(flat, 1.0, np.asarray(pinv, np.float32), out)
+    return np.moveaxis(out.reshape(-1, b, w, c), 0, -1)
 
 
 def ptm_rgb_band(band: Band, pinv255: npt.NDArray[np.float32]) -> Out:
@@ -41,13 +46,16 @@ def ptm_rgb_band(band: Band, pinv255: npt.NDArray[np.float32]) -> Out:
     return {"coeffs": _project(pinv255, band)}
 
 
-def ptm_lrgb_band(band: Band, pinv: npt.NDArray[np.float32], *, compiled: bool = True) -> Out:
+def ptm_lrgb_band(band: npt.NDArray[np.generic], pinv: npt.NDArray[np.float32], *,
+                  compiled: bool = True, div: float = 1.0) -> Out:
     """LRGB PTM (ptmfit): ``coeffs (b, W, 6)`` 0–255 units of the normalised luminance and
-    ``rgb (b, W, 3)`` uint8 = ``rint(255 · Σ c·Yn / Σ Yn²)`` (:mod:`.lrgb_kernel`; ``compiled``
-    False: this numpy reference)."""
+    ``rgb (b, W, 3)`` uint8 = ``rint(255 · Σ c·Yn / Σ Yn²)`` (:mod:`.lrgb_kernel`, which also
+    reads a band as decoded, ``band / div``; ``compiled`` False: this numpy reference, of a
+    float band)."""
     if compiled:
-        coeffs32, rgb8 = lrgb_band_compiled(band, pinv, LUMINANCE_WEIGHTS)
+        coeffs32, rgb8 = lrgb_band_compiled(band, pinv, LUMINANCE_WEIGHTS, div)
         return {"coeffs": coeffs32, "rgb": rgb8}
+    band = np.asarray(band, np.float32) / np.float32(div)
     n, b, w, _ = band.shape
     lum = band @ np.asarray(LUMINANCE_WEIGHTS, np.float32)  # (N, b, W)
     peak = lum.max(axis=0)

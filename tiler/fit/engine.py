@@ -29,12 +29,13 @@ from threadpoolctl import threadpool_limits
 from lanterna.tiler.formats.hsh_basis import hsh_weights
 from lanterna.tiler.formats.planes import PlaneLayer
 from lanterna.tiler.formats.ptm_model import ptm_weights
-from lanterna.tiler.inputs.stack import StackReader
+from lanterna.tiler.inputs.stack import DECODE_THREADS, StackReader
 from lanterna.tiler.progress import Progress
 from lanterna.tiler.render.shading import linear_to_srgb, srgb_to_linear
 
 from . import bands as fb
 from .hsh import hsh_design_matrix, hsh_pinv
+from .linear_kernel import linear_band
 from .lrgb_kernel import lrgb_held_out_compiled
 from .normals import check_lights
 from .ptm import ptm_design_matrix, ptm_pinv
@@ -86,21 +87,24 @@ class _Solver:
         except ValueError as err:
             raise ValueError(f"{key}: {err}") from None
 
-    def solve(self, band: npt.NDArray[np.float32]) -> dict[str, fb.Out]:
-        """Every requested model's float outputs for one band (all of this solver's lights)."""
+    def solve(self, band: npt.NDArray[np.float32], keys: Sequence[str] | None = None
+              ) -> dict[str, fb.Out]:
+        """The float outputs of every requested model (or of ``keys`` among them) for one band
+        (all of this solver's lights)."""
+        keys = self.keys if keys is None else keys
         out: dict[str, fb.Out] = {}
-        if "ptm" in self.keys:
+        if "ptm" in keys:
             out["ptm"] = fb.ptm_rgb_band(band, self.pinv["ptm"])
-        if "ptm-lrgb" in self.keys:
+        if "ptm-lrgb" in keys:
             out["ptm-lrgb"] = fb.ptm_lrgb_band(band, self.pinv["ptm-lrgb"])
-        if "hsh" in self.keys:
+        if "hsh" in keys:
             out["hsh"] = fb.hsh_band(band, self.pinv["hsh"])
-        if {"normals", "ward"} & set(self.keys):
+        if {"normals", "ward"} & set(keys):
             physical = srgb_to_linear(band) if self.linear else band
             nrm = fb.normals_band(physical, self.lights,
                                   iterations=fb.IRLS_ITERATIONS if self.linear else 0)
             out["normals"] = nrm
-            if "ward" in self.keys:
+            if "ward" in keys:
                 normals = np.asarray(nrm["normals"], np.float32)
                 out["ward"] = {**fb.ward_band(physical, self.lights, normals),
                                "normals": normals}
@@ -113,7 +117,13 @@ PREDICT: dict[str, Callable[[fb.Out, npt.NDArray[np.float64]], fb.Band]] = {
 }
 
 
-_StepResult = tuple[dict[str, fb.Out] | None, dict[str, npt.NDArray[np.float64]]]
+#: Per band: the outputs of its parts in row order (the linear models' whole band first, then
+#: each float sub-band's), or ``None`` without layers; and the held-out squared errors per model.
+_StepResult = tuple[list[dict[str, fb.Out]] | None, dict[str, npt.NDArray[np.float64]]]
+#: Models solved by one compiled product over the band as stored (:mod:`.linear_kernel`).
+LINEAR_KEYS = ("ptm", "hsh")
+#: Models whose compiled kernels read a whole band as decoded (no float copy of it).
+WHOLE_BAND_KEYS = (*LINEAR_KEYS, "ptm-lrgb")
 
 
 @dataclass
@@ -130,51 +140,98 @@ class _Step:
     layers: bool
     #: key -> ``(h, N)`` rows predicting the held-out lights straight from the band's samples
     fused: dict[str, npt.NDArray[np.float32]] = field(default_factory=dict)
-    extra: Sequence[Callable[[npt.NDArray[np.float32]],
+    extra: Sequence[Callable[[npt.NDArray[np.generic], float],
                              tuple[fb.Out | None, npt.NDArray[np.float64]]]] = ()
     extra_keys: Sequence[str] = ()
+    #: the float sub-band buffer, made where the step runs (never pickled)
+    _unit: npt.NDArray[np.float32] | None = field(default=None, repr=False, compare=False)
 
-    def __call__(self, band: npt.NDArray[np.float32]) -> _StepResult:
+    def __getstate__(self) -> dict[str, Any]:
+        return {**self.__dict__, "_unit": None}
+
+    def __call__(self, band: npt.NDArray[np.generic], div: float = 1.0) -> _StepResult:
+        """Solve ``band`` ``(N, b, W, 3)``: 0–1 float32 (``div`` 1), or the samples as decoded
+        (8/16-bit, ``div`` 255/65535)."""
         keys = self.full.keys
-        outs = self.full.solve(band) if self.layers else None
-        sse = {k: np.zeros(len(self.held)) for k in keys}
-        for key, model in zip(self.extra_keys, self.extra, strict=True):
-            out, sse[key] = model(band)
-            if outs is not None and out is not None:
-                outs[key] = out
-        if self.loo is not None and keys:
-            sse.update(self._held_out(band, self.loo))
-        return outs, sse
+        sse = {k: np.zeros(len(self.held)) for k in [*keys, *self.extra_keys]}
+        parts: list[dict[str, fb.Out]] = []
+        whole = [k for k in WHOLE_BAND_KEYS if k in keys]
+        if whole or self.extra:
+            outs = self._whole(band, div, whole, sse)
+            for key, model in zip(self.extra_keys, self.extra, strict=True):
+                out, sse[key] = model(band, div)
+                if out is not None:
+                    outs[key] = out
+            parts.append(outs)
+        rest = [k for k in keys if k not in WHOLE_BAND_KEYS]
+        if rest:
+            for piece in self._floats(band, div):
+                outs = self.full.solve(piece, rest) if self.layers else {}
+                if self.loo is not None:
+                    for k, err in self._held_out(piece, self.loo, rest).items():
+                        sse[k] += err
+                parts.append(outs)
+        return (parts if self.layers else None), sse
 
-    def _held_out(self, band: npt.NDArray[np.float32], loo: _Solver
+    def _whole(self, band: npt.NDArray[np.generic], div: float, keys: Sequence[str],
+               sse: dict[str, npt.NDArray[np.float64]]) -> dict[str, fb.Out]:
+        """The models whose compiled kernels read the band as decoded, each in one pass over
+        the whole band: PTM/HSH coefficients (coefficient-major, with their range, by
+        :func:`~.linear_kernel.linear_band`), LRGB's, and their held-out errors."""
+        n, b, w, c = band.shape
+        flat = np.ascontiguousarray(band).reshape(n, -1)
+        outs: dict[str, fb.Out] = {}
+        if "ptm-lrgb" in keys:
+            if self.layers:
+                outs["ptm-lrgb"] = fb.ptm_lrgb_band(band, self.full.pinv["ptm-lrgb"], div=div)
+            if self.loo is not None:
+                basis = np.stack([ptm_weights(float(lt[0]), float(lt[1])).astype(np.float32)
+                                  for lt in self.full.lights[self.held]])
+                sse["ptm-lrgb"] = lrgb_held_out_compiled(band, self.loo.pinv["ptm-lrgb"],
+                                                         fb.LUMINANCE_WEIGHTS, self.train,
+                                                         self.held, basis, div)
+        for k in (k for k in keys if k in LINEAR_KEYS):
+            rows = self.full.pinv[k] if self.layers else np.zeros((0, n), np.float32)
+            coeffs = np.empty((rows.shape[0], flat.shape[1]), np.float32)
+            held = self.fused.get(k) if self.loo is not None else None
+            lo, hi, err = linear_band(flat, div, rows, coeffs, held_rows=held, held=self.held)
+            if held is not None:
+                sse[k] = err
+            outs[k] = {"coeffsByTerm": coeffs.reshape(-1, b, w, c), "lo": lo, "hi": hi}
+        return outs
+
+    def _floats(self, band: npt.NDArray[np.generic], div: float
+                ) -> Iterator[npt.NDArray[np.float32]]:
+        """``band`` as float32 0–1 sub-bands of :func:`sub_band_rows` rows, each valid until
+        the next is asked for: views of a float band, or converted into one reused buffer (a
+        fresh 4 MB array each time costs a page fault per 4 KB page, as much as the conversion
+        itself; no solver keeps a view of its input)."""
+        n, b, w, c = band.shape
+        rows = sub_band_rows(n, w)
+        native = band.dtype != np.float32 or div != 1.0
+        if native and (self._unit is None or self._unit.size < n * rows * w * c):
+            self._unit = np.empty(n * rows * w * c, np.float32)
+        for r0 in range(0, b, rows):
+            r1 = min(b, r0 + rows)
+            if not native:
+                yield np.asarray(band[:, r0:r1], np.float32)
+                continue
+            assert self._unit is not None
+            piece = self._unit[:n * (r1 - r0) * w * c].reshape(n, r1 - r0, w, c)
+            for i in range(n):
+                to_unit_compiled(band[i, r0:r1], None if div == 1.0 else div, piece[i])
+            yield piece
+
+    def _held_out(self, band: npt.NDArray[np.float32], loo: _Solver, keys: Sequence[str]
                   ) -> dict[str, npt.NDArray[np.float64]]:
-        """The squared errors of the leave-one-out fits on the held-out lights of ``band``.
-
-        The linear models' held-out predictions are one product of the band with their
-        :attr:`fused` rows (no refit, no copy of the training images), LRGB's are fitted and
-        predicted per pixel by a compiled kernel from the band itself; the others are refitted
-        on a copy of the training images and predicted.
-        """
+        """The squared errors on the held-out lights of ``band`` of the leave-one-out fits of
+        ``keys`` (the photometric models; :meth:`_whole` sums the others'): refitted on a copy
+        of the training images, and predicted."""
         sse: dict[str, npt.NDArray[np.float64]] = {}
         n = band.shape[0]
-        flat = np.ascontiguousarray(band).reshape(n, -1)
-        actual = flat[self.held]
-        for k, rows in self.fused.items():
-            pred = rows @ flat
-            np.clip(pred, 0.0, 1.0, out=pred)
-            pred -= actual
-            sse[k] = np.einsum("ij,ij->i", pred, pred, dtype=np.float64)
-        if "ptm-lrgb" in self.full.keys:  # compiled per pixel, from the band itself
-            basis = np.stack([ptm_weights(float(lt[0]), float(lt[1])).astype(np.float32)
-                              for lt in self.full.lights[self.held]])
-            sse["ptm-lrgb"] = lrgb_held_out_compiled(band, loo.pinv["ptm-lrgb"],
-                                                     fb.LUMINANCE_WEIGHTS, self.train,
-                                                     self.held, basis)
-        rest = [k for k in self.full.keys if k not in self.fused and k != "ptm-lrgb"]
-        if not rest:
-            return sse
-        fitted = loo.solve(band[self.train])
-        for k in rest:
+        actual = np.ascontiguousarray(band).reshape(n, -1)[self.held]
+        fitted = loo.solve(band[self.train], keys)
+        for k in keys:
             sse[k] = np.zeros(len(self.held))
             for j, i in enumerate(self.held):
                 pred = PREDICT[k](fitted[k], self.full.lights[i])
@@ -207,15 +264,16 @@ def _fused_rows(loo: _Solver, lights: Lights, held: npt.NDArray[np.intp],
 class ExtraModel(Protocol):
     """A model with its own per-band step (the PCA bases, :mod:`~lanterna.tiler.fit.pca_band`).
 
-    ``step(band)`` (picklable, run where the band is solved) returns the band's outputs (or
-    ``None`` without layers) and the squared errors on the held-out lights of ``fit_stream``;
-    ``take`` stores the outputs in order, ``finish`` makes the layer at the end.
+    ``step(band, div)`` (picklable, run where the band is solved; ``band / div`` is the band in
+    0–1: float32 with ``div`` 1, or as decoded) returns the band's outputs (or ``None``
+    without layers) and the squared errors on the held-out lights of ``fit_stream``; ``take``
+    stores the outputs in order, ``finish`` makes the layer at the end.
     """
 
     key: str
 
     @property
-    def step(self) -> Callable[[npt.NDArray[np.float32]],
+    def step(self) -> Callable[[npt.NDArray[np.generic], float],
                                tuple[fb.Out | None, npt.NDArray[np.float64]]]: ...
 
     def take(self, out: fb.Out) -> None: ...
@@ -291,17 +349,18 @@ def fit_stream(images: Images, lights: Lights, keys: Sequence[str], scratch: Pat
                  [m.step for m in extra], [m.key for m in extra])
     results: Iterable[tuple[int, _StepResult]]
     if runner is None:
-        results = ((y1, step(band)) for y1, band in _pieces(images, spans, sub_band_rows(n, w)))
+        results = ((y1, step(band, div)) for y1, band, div in _bands(images, spans))
     else:
         results = zip((y1 for _, y1 in spans), runner.bands(images, spans, step), strict=True)
     # one BLAS thread: the pass has its own (the read-ahead decode, the kernels'); idle BLAS
     # threads spin, which on a shared or busy machine costs more than the small products gain
     with threadpool_limits(limits=1, user_api="blas"):
-        for y1, (outs, band_sse) in results:
-            if outs is not None:
+        for y1, (parts, band_sse) in results:
+            for outs in parts or ():
                 sinks.take(outs, keys)
                 for m in extra:
-                    m.take(outs[m.key])
+                    if m.key in outs:
+                        m.take(outs[m.key])
             for k in every:
                 sse[k] += band_sse[k]
             if bar:
@@ -326,38 +385,34 @@ def sub_band_rows(n: int, width: int, budget: int = SUB_BAND_BUDGET) -> int:
     return max(1, budget // max(1, n * width * 12))
 
 
-def _pieces(images: Images, spans: Sequence[tuple[int, int]], rows: int
-            ) -> Iterator[tuple[int, npt.NDArray[np.float32]]]:
-    """Yield ``(y1, float band)`` sub-bands of ``rows`` rows, in order, of each read band.
+def _bands(images: Images, spans: Sequence[tuple[int, int]]
+           ) -> Iterator[tuple[int, npt.NDArray[np.generic], float]]:
+    """Yield ``(y1, band, div)`` for each span, in order: ``band / div`` is ``images[:, y0:y1]``.
 
-    The read bands of a :class:`StackReader` stay as stored (8-bit: a quarter of the float
-    band) and are read a band ahead in a thread (libvips decodes without the GIL); each sub-band
-    becomes float32 only when it is solved, so it and its solvers' temporaries stay in cache.
-    The values are those of ``images[:, y0:y1]``; a piece is valid until the next one is
-    asked for (they share one buffer).
+    A :class:`StackReader` whose images share a sample format yields its bands as decoded
+    (8-bit: a quarter of the float band), read a band ahead, each band's files decoded in
+    parallel (:data:`DECODE_THREADS`; libvips runs without the GIL) into one of two reused
+    buffers; a band is valid until the next one is asked for.  Other stacks yield float32 bands.
     """
-    def read(span: tuple[int, int]) -> Any:
-        if isinstance(images, StackReader):
-            return images.native_rows(*span)
-        return images[:, span[0]:span[1]]
-
-    # one float buffer for every sub-band: a fresh 4 MB array each time costs a page fault per
-    # 4 KB page (as much as the conversion itself); each piece is solved and its outputs taken
-    # before the next one is made, and no step keeps a view of its input
+    dtype = images.native_dtype() if isinstance(images, StackReader) else None
     n, width = images.shape[0], images.shape[2]
-    buffer = np.empty(n * rows * width * 3 if isinstance(images, StackReader) else 0, np.float32)
-    with ThreadPoolExecutor(max_workers=1, thread_name_prefix="lanterna-read") as pool:
-        ahead = pool.submit(read, spans[0]) if spans else None
-        for i, (y0, y1) in enumerate(spans):
+    tallest = max((y1 - y0 for y0, y1 in spans), default=0)
+    buffers = [np.empty(n * tallest * width * 3 if dtype is not None else 0, dtype or np.uint8)
+               for _ in range(2)]
+    with ThreadPoolExecutor(max_workers=DECODE_THREADS,
+                            thread_name_prefix="lanterna-decode") as decoders, \
+            ThreadPoolExecutor(max_workers=1, thread_name_prefix="lanterna-read") as pool:
+
+        def read(i: int) -> tuple[npt.NDArray[np.generic], float]:
+            y0, y1 = spans[i]
+            if dtype is None or not isinstance(images, StackReader):
+                return np.asarray(images[:, y0:y1], np.float32), 1.0
+            band = buffers[i % 2][:n * (y1 - y0) * width * 3].reshape(n, y1 - y0, width, 3)
+            return band, images.band_into(y0, y1, band, decoders)
+
+        ahead = pool.submit(read, 0) if spans else None
+        for i, (_, y1) in enumerate(spans):
             assert ahead is not None
-            band = ahead.result()
-            ahead = pool.submit(read, spans[i + 1]) if i + 1 < len(spans) else None
-            for r0 in range(0, y1 - y0, rows):
-                r1 = min(y1 - y0, r0 + rows)
-                if isinstance(images, StackReader):
-                    piece = buffer[:n * (r1 - r0) * width * 3].reshape(n, r1 - r0, width, 3)
-                    for k, (image_rows, full_scale) in enumerate(band):
-                        to_unit_compiled(image_rows[r0:r1], full_scale, piece[k])
-                else:
-                    piece = np.asarray(band[:, r0:r1], np.float32)
-                yield y0 + r1, piece
+            band, div = ahead.result()
+            ahead = pool.submit(read, i + 1) if i + 1 < len(spans) else None
+            yield y1, band, div

@@ -21,7 +21,7 @@ _CHUNK = 512  # pixels per parallel task
 
 
 @numba.njit(cache=True, parallel=True, nogil=True)
-def _lrgb(band: npt.NDArray[np.float32], pinv: npt.NDArray[np.float64],
+def _lrgb(band: npt.NDArray[np.generic], d: np.float32, pinv: npt.NDArray[np.float64],
           weights: npt.NDArray[np.float64], coeffs: npt.NDArray[np.float32],
           rgb: npt.NDArray[np.uint8]) -> None:
     # every loop runs over the chunk's pixels innermost (vectorised across pixels); each
@@ -35,8 +35,10 @@ def _lrgb(band: npt.NDArray[np.float32], pinv: npt.NDArray[np.float64],
         for i in range(n):
             src = band[i, q0:q1]
             for q in range(m):
-                lum[i, q] = (weights[0] * src[q, 0] + weights[1] * src[q, 1]
-                             + weights[2] * src[q, 2])
+                cr = np.float32(src[q, 0]) / d
+                cg = np.float32(src[q, 1]) / d
+                cb = np.float32(src[q, 2]) / d
+                lum[i, q] = weights[0] * cr + weights[1] * cg + weights[2] * cb
         scale = lum[0].copy()  # the peak over the lights, then its inverse
         for i in range(1, n):
             for q in range(m):
@@ -51,9 +53,9 @@ def _lrgb(band: npt.NDArray[np.float32], pinv: npt.NDArray[np.float64],
                 y = lum[i, q] * scale[q]
                 lum[i, q] = y
                 energy[q] += y * y
-                proj[0, q] += src[q, 0] * y
-                proj[1, q] += src[q, 1] * y
-                proj[2, q] += src[q, 2] * y
+                proj[0, q] += (np.float32(src[q, 0]) / d) * y
+                proj[1, q] += (np.float32(src[q, 1]) / d) * y
+                proj[2, q] += (np.float32(src[q, 2]) / d) * y
         acc = np.empty(m)
         for t in range(k):
             acc[:] = 0.0
@@ -71,21 +73,24 @@ def _lrgb(band: npt.NDArray[np.float32], pinv: npt.NDArray[np.float64],
                 rgb[q0 + q, c] = np.uint8(min(max(v, 0.0), 255.0))
 
 
-def lrgb_band_compiled(band: npt.NDArray[np.float32], pinv: npt.NDArray[np.floating],
-                       weights: tuple[float, float, float]
+def lrgb_band_compiled(band: npt.NDArray[np.generic], pinv: npt.NDArray[np.floating],
+                       weights: tuple[float, float, float], div: float = 1.0
                        ) -> tuple[npt.NDArray[np.float32], npt.NDArray[np.uint8]]:
     """``coeffs (b, W, 6)`` float32 (0–255 units) and ``rgb (b, W, 3)`` uint8 of one band
-    ``(N, b, W, 3)`` float32 in 0–1, ``pinv`` the ``(6, N)`` PTM pseudo-inverse."""
+    ``(N, b, W, 3)``: float32 in 0–1, or as decoded with ``div`` 255/65535 (each sample
+    becomes ``float32(x) / div`` where it is read: the float band's values, so the same bits);
+    ``pinv`` the ``(6, N)`` PTM pseudo-inverse."""
     n, b, w, _ = band.shape
     coeffs = np.empty((b * w, pinv.shape[0]), np.float32)
     rgb = np.empty((b * w, 3), np.uint8)
-    _lrgb(np.ascontiguousarray(band, np.float32).reshape(n, b * w, 3),
+    _lrgb(_flat(band).reshape(n, b * w, 3), np.float32(div),
           np.ascontiguousarray(pinv, np.float64), np.asarray(weights, np.float64), coeffs, rgb)
     return coeffs.reshape(b, w, -1), rgb.reshape(b, w, 3)
 
 
 @numba.njit(cache=True, parallel=True, nogil=True)
-def _lrgb_held_out(band: npt.NDArray[np.float32], pinv: npt.NDArray[np.float64],
+def _lrgb_held_out(band: npt.NDArray[np.generic], d: np.float32,
+                   pinv: npt.NDArray[np.float64],
                    weights: npt.NDArray[np.float64], train: npt.NDArray[np.intp],
                    held: npt.NDArray[np.intp], basis: npt.NDArray[np.float64],
                    sse: npt.NDArray[np.float64]) -> None:
@@ -100,8 +105,10 @@ def _lrgb_held_out(band: npt.NDArray[np.float32], pinv: npt.NDArray[np.float64],
         for j in range(n_train):
             src = band[train[j], q0:q1]
             for q in range(m):
-                y[j, q] = (weights[0] * src[q, 0] + weights[1] * src[q, 1]
-                           + weights[2] * src[q, 2])
+                cr = np.float32(src[q, 0]) / d
+                cg = np.float32(src[q, 1]) / d
+                cb = np.float32(src[q, 2]) / d
+                y[j, q] = weights[0] * cr + weights[1] * cg + weights[2] * cb
         scale = y[0].copy()
         for j in range(1, n_train):
             for q in range(m):
@@ -115,9 +122,9 @@ def _lrgb_held_out(band: npt.NDArray[np.float32], pinv: npt.NDArray[np.float64],
                 yn = y[j, q] * scale[q]
                 y[j, q] = yn
                 sums[0, q] += yn * yn
-                sums[1, q] += src[q, 0] * yn
-                sums[2, q] += src[q, 1] * yn
-                sums[3, q] += src[q, 2] * yn
+                sums[1, q] += (np.float32(src[q, 0]) / d) * yn
+                sums[2, q] += (np.float32(src[q, 1]) / d) * yn
+                sums[3, q] += (np.float32(src[q, 2]) / d) * yn
         coeffs = np.zeros((k, m))
         for t in range(k):
             for j in range(n_train):
@@ -143,9 +150,9 @@ def _lrgb_held_out(band: npt.NDArray[np.float32], pinv: npt.NDArray[np.float64],
             src = band[held[mm], q0:q1]
             for q in range(m):
                 v = lum[q] / 255.0
-                d0 = min(max(rgb[0, q] * v, 0.0), 1.0) - src[q, 0]
-                d1 = min(max(rgb[1, q] * v, 0.0), 1.0) - src[q, 1]
-                d2 = min(max(rgb[2, q] * v, 0.0), 1.0) - src[q, 2]
+                d0 = min(max(rgb[0, q] * v, 0.0), 1.0) - (np.float32(src[q, 0]) / d)
+                d1 = min(max(rgb[1, q] * v, 0.0), 1.0) - (np.float32(src[q, 1]) / d)
+                d2 = min(max(rgb[2, q] * v, 0.0), 1.0) - (np.float32(src[q, 2]) / d)
                 err[q] = d0 * d0 + d1 * d1 + d2 * d2
             acc = 0.0
             for q in range(m):
@@ -153,20 +160,28 @@ def _lrgb_held_out(band: npt.NDArray[np.float32], pinv: npt.NDArray[np.float64],
             sse[chunk, mm] += acc
 
 
-def lrgb_held_out_compiled(band: npt.NDArray[np.float32], pinv: npt.NDArray[np.floating],
+def lrgb_held_out_compiled(band: npt.NDArray[np.generic], pinv: npt.NDArray[np.floating],
                            weights: tuple[float, float, float], train: npt.NDArray[np.intp],
-                           held: npt.NDArray[np.intp], basis: npt.NDArray[np.floating]
-                           ) -> npt.NDArray[np.float64]:
+                           held: npt.NDArray[np.intp], basis: npt.NDArray[np.floating],
+                           div: float = 1.0) -> npt.NDArray[np.float64]:
     """Squared errors ``(h,)`` on the ``held`` lights of an LRGB PTM fitted to the ``train``
     lights of ``band (N, b, W, 3)`` (``pinv`` their ``(6, len(train))`` pseudo-inverse,
     ``basis (h, 6)`` the held-out lights' PTM weights): the fit of :func:`lrgb_band_compiled`
     and the prediction of :func:`~lanterna.tiler.fit.bands.predict_ptm_band` per pixel, without
     copying the training images.  Summed per chunk, then over chunks in order (deterministic)."""
     n, b, w, _ = band.shape
-    flat = np.ascontiguousarray(band, np.float32).reshape(n, b * w, 3)
+    flat = _flat(band).reshape(n, b * w, 3)
     sse = np.zeros(((b * w + _CHUNK - 1) // _CHUNK, len(held)))
-    _lrgb_held_out(flat, np.ascontiguousarray(pinv, np.float64), np.asarray(weights, np.float64),
+    _lrgb_held_out(flat, np.float32(div), np.ascontiguousarray(pinv, np.float64),
+                   np.asarray(weights, np.float64),
                    np.ascontiguousarray(train, np.intp), np.ascontiguousarray(held, np.intp),
                    np.ascontiguousarray(basis, np.float64), sse)
     out: npt.NDArray[np.float64] = sse.sum(axis=0)
     return out
+
+
+def _flat(band: npt.NDArray[np.generic]) -> npt.NDArray[np.generic]:
+    """``band`` contiguous, 8/16-bit kept as decoded, anything else as float32."""
+    if band.dtype in (np.uint8, np.uint16):
+        return np.ascontiguousarray(band)
+    return np.ascontiguousarray(band, np.float32)

@@ -25,21 +25,22 @@ from lanterna.tiler.formats.strip_tiff import StripTiffWriter
 from lanterna.tiler.progress import Progress
 
 from .pca import PcaSpec
-from .pca_basis import Moments, PcaFit, fit_basis, light_major
+from .pca_basis import Moments, PcaFit, fit_basis
+from .pca_kernel import light_major, quantise_planes
 from .pca_sample import sample_pixels
 
 Out = dict[str, npt.NDArray[np.generic]]
 
 
-def band_planes(fit: PcaFit, x: npt.NDArray[np.float32], rows: int, width: int
-                ) -> npt.NDArray[np.uint8]:
-    """The 8-bit planes ``(rows, W, groups, 3)`` of a band's light samples ``x`` ``(n·3, P)``
-    (the planes past ``N`` of the last group are 0)."""
-    t = fit.quantise(fit.coefficients(x))  # (P, N)
-    groups = -(-t.shape[1] // 3)
-    padded = np.zeros((t.shape[0], 3 * groups), np.uint8)
-    padded[:, :t.shape[1]] = t
-    return padded.reshape(rows, width, groups, 3)
+#: Bytes of light-major float samples projected at once (they stay in the CPU caches).
+SUB_BAND_BUDGET = 4 << 20
+
+
+def band_planes(fit: PcaFit, x: npt.NDArray[np.float32], out: npt.NDArray[np.uint8]) -> None:
+    """Write the 8-bit planes of light samples ``x`` ``(n·3, P)`` into ``out`` ``(P, 3·groups)``
+    (the planes past ``N`` of the last group are 0): :meth:`PcaFit.quantise`'s bytes."""
+    lo32, gain32 = fit.quantisation()
+    quantise_planes(fit.coefficients(x), lo32, gain32, out)
 
 
 @dataclass
@@ -58,22 +59,33 @@ class PcaStep:
     held_weights: npt.NDArray[np.float32]
     layers: bool = True
 
-    def __call__(self, band: npt.NDArray[np.float32]
+    def __call__(self, band: npt.NDArray[np.generic], div: float = 1.0
                  ) -> tuple[Out | None, npt.NDArray[np.float64]]:
+        """Planes and held-out errors of ``band`` ``(n, b, W, 3)``: float32 in 0–1 (``div`` 1)
+        or as decoded (``div`` 255/65535), projected in sub-bands of
+        :data:`SUB_BAND_BUDGET` light-major floats (one reused buffer)."""
         n, b, w, _ = band.shape
-        x = light_major(np.asarray(band, np.float32).reshape(n, b * w, 3))
-        out: Out | None = None
-        if self.layers:
-            out = {"planes": band_planes(self.full, x, b, w)}
+        pixels = np.ascontiguousarray(band).reshape(n, b * w, 3)
+        groups = -(-self.full.basis.nplanes // 3)
+        planes = np.empty((b, w, groups, 3) if self.layers else (0, w, groups, 3), np.uint8)
+        flat = planes.reshape(-1, 3 * groups)
         sse = np.zeros(len(self.held))
-        if self.loo is not None and len(self.held):
-            coeffs = self.loo.coefficients(x)
-            pred = self.held_weights[:, 1:] @ coeffs
-            pred += self.held_weights[:, :1]
-            np.clip(pred, 0.0, 1.0, out=pred)
-            pred -= x[(self.held[:, None] * 3 + np.arange(3)).reshape(-1)]
-            sse = np.einsum("ij,ij->i", pred, pred, dtype=np.float64).reshape(-1, 3).sum(1)
-        return out, sse
+        step = max(w, SUB_BAND_BUDGET // max(1, 12 * n) // w * w)  # whole rows
+        buffer = np.empty(3 * n * min(step, b * w), np.float32)
+        for p0 in range(0, b * w, step):
+            p1 = min(b * w, p0 + step)
+            x = light_major(pixels, div, slice(p0, p1), buffer[:3 * n * (p1 - p0)].reshape(
+                3 * n, p1 - p0))
+            if self.layers:
+                band_planes(self.full, x, flat[p0:p1])
+            if self.loo is not None and len(self.held):
+                coeffs = self.loo.coefficients(x)
+                pred = self.held_weights[:, 1:] @ coeffs
+                pred += self.held_weights[:, :1]
+                np.clip(pred, 0.0, 1.0, out=pred)
+                pred -= x[(self.held[:, None] * 3 + np.arange(3)).reshape(-1)]
+                sse += np.einsum("ij,ij->i", pred, pred, dtype=np.float64).reshape(-1, 3).sum(1)
+        return ({"planes": planes} if self.layers else None), sse
 
 
 class PcaModel:
@@ -159,10 +171,10 @@ def fit_pca(images: Any, lights: npt.NDArray[np.float64], spec: PcaSpec, *,
     sample = sample_pixels(images, band_rows)
     full = fit_basis(sample, lights, spec)
     planes = np.empty((h, w, spec.nplanes), np.uint8)
+    padded = np.empty((band_rows * w, 3 * -(-spec.nplanes // 3)), np.uint8)
     for y0 in range(0, h, band_rows):
         band = np.asarray(images[:, y0:y0 + band_rows], np.float32)
         rows = band.shape[1]
-        x = light_major(band.reshape(n, rows * w, 3))
-        planes[y0:y0 + rows] = band_planes(full, x, rows, w).reshape(rows, w, -1)[
-            ..., :spec.nplanes]
+        band_planes(full, light_major(band.reshape(n, rows * w, 3)), padded[:rows * w])
+        planes[y0:y0 + rows] = padded[:rows * w, :spec.nplanes].reshape(rows, w, -1)
     return full, planes

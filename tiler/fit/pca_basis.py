@@ -124,11 +124,17 @@ class PcaFit:
         out: F32 = self.kernel @ x - self.offset[:, None]
         return out
 
+    def quantisation(self) -> tuple[F32, F32]:
+        """The float32 ``lo`` and ``gain`` per plane of :meth:`quantise`."""
+        lo = self.lo.astype(np.float32)
+        gain: F32 = np.float32(255.0) / (self.hi - self.lo).astype(np.float32)
+        return lo, gain
+
     def quantise(self, coefficients: F32) -> npt.NDArray[np.uint8]:
         """8-bit plane values ``t`` ``(P, N)`` of coefficients ``(N, P)``:
-        ``r = (t/255 − bias)·scale``."""
-        lo = self.lo.astype(np.float32)[:, None]
-        gain = (np.float32(255.0) / (self.hi - self.lo).astype(np.float32))[:, None]
+        ``r = (t/255 − bias)·scale`` (the numpy reference of the compiled
+        :func:`~lanterna.tiler.fit.pca_kernel.quantise_planes`)."""
+        lo, gain = (a[:, None] for a in self.quantisation())
         t = np.rint((coefficients - lo) * gain)
         out: npt.NDArray[np.uint8] = np.clip(t, 0, 255).astype(np.uint8).T
         return out

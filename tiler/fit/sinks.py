@@ -60,7 +60,14 @@ class Spill:
         ``(K, pixels)`` products are written without a copy and reduced per row."""
         km = np.ascontiguousarray(np.moveaxis(values, -1, 0), np.float32)
         flat = km.reshape(km.shape[0], -1)
-        lo, hi = flat.min(axis=1).astype(np.float64), flat.max(axis=1).astype(np.float64)
+        self.append_by_term(km, flat.min(axis=1), flat.max(axis=1))
+
+    def append_by_term(self, km: npt.NDArray[np.float32], band_lo: npt.NDArray[np.generic],
+                       band_hi: npt.NDArray[np.generic]) -> None:
+        """Append a coefficient-major band ``(K, b, …)`` (kept, not copied) whose per-term
+        min and max are ``band_lo``, ``band_hi`` (as a compiled solver found them on the way)."""
+        lo = np.asarray(band_lo, np.float64)
+        hi = np.asarray(band_hi, np.float64)
         if not (np.all(np.isfinite(lo)) and np.all(np.isfinite(hi))):
             raise ValueError("the fit produced non-finite coefficients")
         self.lo = lo if self.lo is None else np.minimum(self.lo, lo)
@@ -110,18 +117,23 @@ class Sinks:
                                                  self.height, bands)
         self.writers[name].write(rows)
 
-    def _spill(self, name: str, values: npt.NDArray[np.float32]) -> None:
+    def _spill(self, name: str) -> Spill:
         if name not in self.spills:
             self.spills[name] = Spill(self.scratch / f"{name}.f32", self.height, self.budget)
-        self.spills[name].append(values)
+        return self.spills[name]
 
     def take(self, outs: dict[str, fb.Out], keys: Sequence[str]) -> None:
+        """Store one part of a band: the outputs of the models of ``keys`` that it holds."""
+        keys = [k for k in keys if k in outs]
         for k in ("ptm", "ptm-lrgb", "hsh"):
-            if k in keys:
-                self._spill(k, np.asarray(outs[k]["coeffs"], np.float32))
+            if k in keys and "coeffsByTerm" in outs[k]:  # a compiled pass's, with its range
+                self._spill(k).append_by_term(np.asarray(outs[k]["coeffsByTerm"], np.float32),
+                                              outs[k]["lo"], outs[k]["hi"])
+            elif k in keys:
+                self._spill(k).append(np.asarray(outs[k]["coeffs"], np.float32))
         if "ptm-lrgb" in keys:
             self._write("ptm-lrgb-color", np.asarray(outs["ptm-lrgb"]["rgb"], np.uint8))
-        if {"normals", "ward"} & set(keys):
+        if "normals" in outs and {"normals", "ward"} & set(keys):
             self._write("normals", encode_normals(np.asarray(outs["normals"]["normals"],
                                                              np.float32)))
         if "normals" in keys:
