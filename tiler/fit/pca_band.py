@@ -18,6 +18,7 @@ from typing import Any
 
 import numpy as np
 import numpy.typing as npt
+from threadpoolctl import threadpool_limits
 
 from lanterna.tiler.formats.pca_model import plane_channel_names
 from lanterna.tiler.formats.planes import PlaneGroup, PlaneLayer
@@ -36,11 +37,13 @@ Out = dict[str, npt.NDArray[np.generic]]
 SUB_BAND_BUDGET = 4 << 20
 
 
-def band_planes(fit: PcaFit, x: npt.NDArray[np.float32], out: npt.NDArray[np.uint8]) -> None:
-    """Write the 8-bit planes of light samples ``x`` ``(n·3, P)`` into ``out`` ``(P, 3·groups)``
-    (the planes past ``N`` of the last group are 0): :meth:`PcaFit.quantise`'s bytes."""
+def band_planes(fit: PcaFit, x: npt.NDArray[np.float32], out: npt.NDArray[np.uint8],
+                p0: int = 0) -> None:
+    """Write the 8-bit planes of light samples ``x`` ``(n·3, P)`` into pixels ``p0:p0 + P`` of
+    ``out`` ``(groups, pixels, 3)`` (the planes past ``N`` of the last group are 0):
+    :meth:`PcaFit.quantise`'s bytes."""
     lo32, gain32 = fit.quantisation()
-    quantise_planes(fit.coefficients(x), lo32, gain32, out)
+    quantise_planes(fit.coefficients(x), lo32, gain32, out, p0)
 
 
 @dataclass
@@ -67,8 +70,7 @@ class PcaStep:
         n, b, w, _ = band.shape
         pixels = np.ascontiguousarray(band).reshape(n, b * w, 3)
         groups = -(-self.full.basis.nplanes // 3)
-        planes = np.empty((b, w, groups, 3) if self.layers else (0, w, groups, 3), np.uint8)
-        flat = planes.reshape(-1, 3 * groups)
+        planes = np.empty((groups, b * w if self.layers else 0, 3), np.uint8)
         sse = np.zeros(len(self.held))
         step = max(w, SUB_BAND_BUDGET // max(1, 12 * n) // w * w)  # whole rows
         buffer = np.empty(3 * n * min(step, b * w), np.float32)
@@ -77,7 +79,7 @@ class PcaStep:
             x = light_major(pixels, div, slice(p0, p1), buffer[:3 * n * (p1 - p0)].reshape(
                 3 * n, p1 - p0))
             if self.layers:
-                band_planes(self.full, x, flat[p0:p1])
+                band_planes(self.full, x, planes, p0)
             if self.loo is not None and len(self.held):
                 coeffs = self.loo.coefficients(x)
                 pred = self.held_weights[:, 1:] @ coeffs
@@ -85,7 +87,7 @@ class PcaStep:
                 np.clip(pred, 0.0, 1.0, out=pred)
                 pred -= x[(self.held[:, None] * 3 + np.arange(3)).reshape(-1)]
                 sse += np.einsum("ij,ij->i", pred, pred, dtype=np.float64).reshape(-1, 3).sum(1)
-        return ({"planes": planes} if self.layers else None), sse
+        return ({"planes": planes.reshape(groups, b, w, 3)} if self.layers else None), sse
 
 
 class PcaModel:
@@ -98,10 +100,9 @@ class PcaModel:
                         for g in range(self.groups)] if step.layers else []
 
     def take(self, out: Out) -> None:
-        """Write one band's planes ``(b, W, groups, 3)``."""
-        planes = out["planes"]
+        """Write one band's planes ``(groups, b, W, 3)``."""
         for g, writer in enumerate(self.writers):
-            writer.write(np.ascontiguousarray(planes[:, :, g]))
+            writer.write(out["planes"][g])
 
     def finish(self, progress: Callable[[str, int], Progress] | None = None) -> PlaneLayer:
         """The fitted layer: ``p0, p1, …`` groups (padding channels of scale 0), the basis."""
@@ -153,9 +154,13 @@ def pca_models(images: Any, lights: npt.NDArray[np.float64], specs: Sequence[Pca
     if not specs:
         return []
     _, h, w, _ = images.shape
-    sample = sample_pixels(images, band_rows, progress=progress)
-    return [prepare_pca(spec, sample, lights, held, scratch, w, h, layers=layers)
-            for spec in specs]
+    # one BLAS thread, as in the fit's pass: the basis's products are small, and OpenBLAS's
+    # idle threads spin after a threaded call — measured 6 % of the CPU of a 2048² rbf fit,
+    # taken from the decode of the pass that follows
+    with threadpool_limits(limits=1, user_api="blas"):
+        sample = sample_pixels(images, band_rows, progress=progress)
+        return [prepare_pca(spec, sample, lights, held, scratch, w, h, layers=layers)
+                for spec in specs]
 
 
 def fit_pca(images: Any, lights: npt.NDArray[np.float64], spec: PcaSpec, *,
@@ -171,10 +176,11 @@ def fit_pca(images: Any, lights: npt.NDArray[np.float64], spec: PcaSpec, *,
     sample = sample_pixels(images, band_rows)
     full = fit_basis(sample, lights, spec)
     planes = np.empty((h, w, spec.nplanes), np.uint8)
-    padded = np.empty((band_rows * w, 3 * -(-spec.nplanes // 3)), np.uint8)
+    groups = np.empty((-(-spec.nplanes // 3), band_rows * w, 3), np.uint8)
     for y0 in range(0, h, band_rows):
         band = np.asarray(images[:, y0:y0 + band_rows], np.float32)
         rows = band.shape[1]
-        band_planes(full, light_major(band.reshape(n, rows * w, 3)), padded[:rows * w])
-        planes[y0:y0 + rows] = padded[:rows * w, :spec.nplanes].reshape(rows, w, -1)
+        band_planes(full, light_major(band.reshape(n, rows * w, 3)), groups)
+        pixel_major = np.moveaxis(groups[:, :rows * w], 0, 1).reshape(rows * w, -1)
+        planes[y0:y0 + rows] = pixel_major[:, :spec.nplanes].reshape(rows, w, -1)
     return full, planes

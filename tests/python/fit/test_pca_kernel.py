@@ -40,9 +40,10 @@ def test_quantised_planes_are_the_numpy_bytes_padded() -> None:
     coefficients = fit.coefficients(x)
     coefficients[:, :5] *= 40.0  # far past the range: clipped to 0 and 255
     ref = fit.quantise(coefficients)  # (P, 8)
-    out = np.full((3001, 9), 7, np.uint8)
+    out = np.full((3, 3001 + 10, 3), 7, np.uint8)  # 3 groups, 10 pixels before this run
     lo, gain = fit.quantisation()
-    quantise_planes(coefficients, lo, gain, out)
-    assert np.array_equal(out[:, :8], ref)
-    assert np.all(out[:, 8] == 0)
-    assert {0, 255} <= set(np.unique(out[:5, :8]))
+    quantise_planes(coefficients, lo, gain, out, 10)
+    got = np.moveaxis(out[:, 10:], 0, 1).reshape(3001, 9)  # pixel-major, as numpy's
+    assert np.array_equal(got[:, :8], ref)
+    assert np.all(got[:, 8] == 0) and np.all(out[:, :10] == 7)  # nothing before the run
+    assert {0, 255} <= set(np.unique(got[:5, :8]))
