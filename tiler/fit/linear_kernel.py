@@ -10,7 +10,9 @@ correctly rounded ``x / 255`` as the float band's), and writes the coefficients 
 their final place (the model's spill, :class:`~lanterna.tiler.fit.sinks.Spill`), with the
 chunk's min/max and the held-out squared errors on the way.  The sums run in another order than
 BLAS's, so coefficients agree with the numpy product to float32 rounding, not bit for bit
-(tests/python/fit/test_linear_kernel.py).
+(tests/python/fit/test_linear_kernel.py).  A variant that kept BLAS for the product (a compiled
+conversion into a reused buffer, one-thread ``sgemm`` into the spill, a compiled range and error
+pass) was slower in the whole fit at 2048²: PTM 0.96 s against 0.72 s, HSH9 1.11 s against 0.90 s.
 """
 
 from __future__ import annotations
