@@ -13,6 +13,17 @@ from __future__ import annotations
 import os
 
 import numba
+import numpy as np
+import numpy.typing as npt
 
 if "NUMBA_THREADING_LAYER" not in os.environ:
     numba.config.THREADING_LAYER = "workqueue"  # type: ignore[attr-defined]
+
+
+def kernel_samples(band: npt.NDArray[np.generic]) -> npt.NDArray[np.generic]:
+    """``band`` contiguous for a kernel that divides its samples where it reads them: 8- and
+    16-bit kept as decoded, float32 as it is, any other format as float32 (one
+    specialisation per sample format, not per caller's dtype)."""
+    if band.dtype in (np.uint8, np.uint16):
+        return np.ascontiguousarray(band)
+    return np.ascontiguousarray(band, np.float32)

@@ -15,9 +15,19 @@ import numba
 import numpy as np
 import numpy.typing as npt
 
-from . import compiled  # noqa: F401 - the threading layer, before any kernel runs
+from . import compiled  # the threading layer, before any kernel runs
 
 _CHUNK = 512  # pixels per parallel task
+
+
+@numba.njit(cache=True, nogil=True, inline="always")
+def _luminance(src: npt.NDArray[np.generic], q: int, d: np.float32,
+               weights: npt.NDArray[np.float64]) -> float:
+    """``Y`` of sample ``q`` of ``src (pixels, 3)``, each channel ``float32(x) / d`` (the float
+    band's value), summed R, G, B in that order."""
+    y: float = (weights[0] * (np.float32(src[q, 0]) / d) + weights[1] * (np.float32(src[q, 1]) / d)
+                + weights[2] * (np.float32(src[q, 2]) / d))
+    return y
 
 
 @numba.njit(cache=True, parallel=True, nogil=True)
@@ -35,10 +45,7 @@ def _lrgb(band: npt.NDArray[np.generic], d: np.float32, pinv: npt.NDArray[np.flo
         for i in range(n):
             src = band[i, q0:q1]
             for q in range(m):
-                cr = np.float32(src[q, 0]) / d
-                cg = np.float32(src[q, 1]) / d
-                cb = np.float32(src[q, 2]) / d
-                lum[i, q] = weights[0] * cr + weights[1] * cg + weights[2] * cb
+                lum[i, q] = _luminance(src, q, d, weights)
         scale = lum[0].copy()  # the peak over the lights, then its inverse
         for i in range(1, n):
             for q in range(m):
@@ -83,7 +90,7 @@ def lrgb_band_compiled(band: npt.NDArray[np.generic], pinv: npt.NDArray[np.float
     n, b, w, _ = band.shape
     coeffs = np.empty((b * w, pinv.shape[0]), np.float32)
     rgb = np.empty((b * w, 3), np.uint8)
-    _lrgb(_flat(band).reshape(n, b * w, 3), np.float32(div),
+    _lrgb(compiled.kernel_samples(band).reshape(n, b * w, 3), np.float32(div),
           np.ascontiguousarray(pinv, np.float64), np.asarray(weights, np.float64), coeffs, rgb)
     return coeffs.reshape(b, w, -1), rgb.reshape(b, w, 3)
 
@@ -105,10 +112,7 @@ def _lrgb_held_out(band: npt.NDArray[np.generic], d: np.float32,
         for j in range(n_train):
             src = band[train[j], q0:q1]
             for q in range(m):
-                cr = np.float32(src[q, 0]) / d
-                cg = np.float32(src[q, 1]) / d
-                cb = np.float32(src[q, 2]) / d
-                y[j, q] = weights[0] * cr + weights[1] * cg + weights[2] * cb
+                y[j, q] = _luminance(src, q, d, weights)
         scale = y[0].copy()
         for j in range(1, n_train):
             for q in range(m):
@@ -170,7 +174,7 @@ def lrgb_held_out_compiled(band: npt.NDArray[np.generic], pinv: npt.NDArray[np.f
     and the prediction of :func:`~lanterna.tiler.fit.bands.predict_ptm_band` per pixel, without
     copying the training images.  Summed per chunk, then over chunks in order (deterministic)."""
     n, b, w, _ = band.shape
-    flat = _flat(band).reshape(n, b * w, 3)
+    flat = compiled.kernel_samples(band).reshape(n, b * w, 3)
     sse = np.zeros(((b * w + _CHUNK - 1) // _CHUNK, len(held)))
     _lrgb_held_out(flat, np.float32(div), np.ascontiguousarray(pinv, np.float64),
                    np.asarray(weights, np.float64),
@@ -179,9 +183,3 @@ def lrgb_held_out_compiled(band: npt.NDArray[np.generic], pinv: npt.NDArray[np.f
     out: npt.NDArray[np.float64] = sse.sum(axis=0)
     return out
 
-
-def _flat(band: npt.NDArray[np.generic]) -> npt.NDArray[np.generic]:
-    """``band`` contiguous, 8/16-bit kept as decoded, anything else as float32."""
-    if band.dtype in (np.uint8, np.uint16):
-        return np.ascontiguousarray(band)
-    return np.ascontiguousarray(band, np.float32)

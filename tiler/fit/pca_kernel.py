@@ -21,7 +21,7 @@ import numba
 import numpy as np
 import numpy.typing as npt
 
-from . import compiled  # noqa: F401 - the threading layer, before any kernel runs
+from . import compiled  # the threading layer, before any kernel runs
 
 
 @numba.njit(cache=True, nogil=True)
@@ -45,9 +45,7 @@ def light_major(band: npt.NDArray[np.generic], div: float = 1.0, pixels: slice |
     n, total, _ = band.shape
     p0, p1, _ = (pixels or slice(None)).indices(total)
     res = np.empty((n * 3, p1 - p0), np.float32) if out is None else out
-    if band.dtype not in (np.uint8, np.uint16, np.float32):
-        band = band.astype(np.float32)
-    _light_major(np.ascontiguousarray(band), np.float32(div), p0, res)
+    _light_major(compiled.kernel_samples(band), np.float32(div), p0, res)
     return res
 
 
