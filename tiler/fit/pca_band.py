@@ -25,16 +25,13 @@ from lanterna.tiler.formats.planes import PlaneGroup, PlaneLayer
 from lanterna.tiler.formats.strip_tiff import StripTiffWriter
 from lanterna.tiler.progress import Progress
 
+from .engine import sub_band_rows
 from .pca import PcaSpec
 from .pca_basis import Moments, PcaFit, fit_basis
 from .pca_kernel import light_major, quantise_planes
 from .pca_sample import sample_pixels
 
 Out = dict[str, npt.NDArray[np.generic]]
-
-
-#: Bytes of light-major float samples projected at once (they stay in the CPU caches).
-SUB_BAND_BUDGET = 4 << 20
 
 
 def band_planes(fit: PcaFit, x: npt.NDArray[np.float32], out: npt.NDArray[np.uint8],
@@ -65,14 +62,14 @@ class PcaStep:
     def __call__(self, band: npt.NDArray[np.generic], div: float = 1.0
                  ) -> tuple[Out | None, npt.NDArray[np.float64]]:
         """Planes and held-out errors of ``band`` ``(n, b, W, 3)``: float32 in 0–1 (``div`` 1)
-        or as decoded (``div`` 255/65535), projected in sub-bands of
-        :data:`SUB_BAND_BUDGET` light-major floats (one reused buffer)."""
+        or as decoded (``div`` 255/65535), projected in the engine's float sub-bands
+        (:func:`~.engine.sub_band_rows`), made light-major in one reused buffer."""
         n, b, w, _ = band.shape
         pixels = np.ascontiguousarray(band).reshape(n, b * w, 3)
         groups = -(-self.full.basis.nplanes // 3)
         planes = np.empty((groups, b * w if self.layers else 0, 3), np.uint8)
         sse = np.zeros(len(self.held))
-        step = max(w, SUB_BAND_BUDGET // max(1, 12 * n) // w * w)  # whole rows
+        step = w * sub_band_rows(n, w)
         buffer = np.empty(3 * n * min(step, b * w), np.float32)
         for p0 in range(0, b * w, step):
             p1 = min(b * w, p0 + step)
