@@ -133,7 +133,7 @@ class Sinks:
                 self._spill(k).append(np.asarray(outs[k]["coeffs"], np.float32))
         if "ptm-lrgb" in keys:
             self._write("ptm-lrgb-color", np.asarray(outs["ptm-lrgb"]["rgb"], np.uint8))
-        if "normals" in outs and {"normals", "ward"} & set(keys):
+        if {"normals", "ward"} & set(keys):  # a part with either holds the normals
             self._write("normals", encode_normals(np.asarray(outs["normals"]["normals"],
                                                              np.float32)))
         if "normals" in keys:
