@@ -64,6 +64,20 @@ def load_json(path: Path) -> Any:
     return parse_json(read_input(Path(path), "a JSON file", max_bytes=MAX_DOCUMENT_BYTES), path)
 
 
+def document_type(path: Path) -> str | None:
+    """The top-level ``type`` of the JSON object in the file ``path``, or ``None`` when there is
+    no such file, it cannot be read as JSON, or it has no text ``type`` (sniffing only: the
+    document's own reader reports what is wrong with it)."""
+    if not Path(path).is_file():
+        return None
+    try:
+        doc = load_json(path)
+    except LanternaInputError:
+        return None
+    kind = doc.get("type") if isinstance(doc, dict) else None
+    return kind if isinstance(kind, str) else None
+
+
 def parse_json(data: bytes, source: str | Path) -> Any:
     """Parse the JSON text ``data`` read from ``source`` (a file or a URL, for the errors)."""
     try:

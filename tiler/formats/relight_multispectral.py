@@ -30,7 +30,7 @@ import numpy.typing as npt
 import pyvips
 
 from lanterna.errors import LanternaInputError
-from lanterna.tiler.documents import load_json
+from lanterna.tiler.documents import document_type, load_json
 from lanterna.tiler.fileio import read_input
 from lanterna.tiler.limits import check_pixels
 
@@ -80,14 +80,8 @@ class Multispectral:
 
 def is_multispectral(folder: Path) -> bool:
     """Whether ``folder`` has an ``info.json`` whose ``type`` is ``multispectral``."""
-    info = Path(folder) / "info.json"
-    if not info.is_file():
-        return False
-    try:
-        doc = load_json(info)
-    except LanternaInputError:
-        return False  # the Relight reader reports it
-    return isinstance(doc, dict) and doc.get("type") == "multispectral"
+    # an unreadable info.json is for the Relight reader to report
+    return document_type(Path(folder) / "info.json") == "multispectral"
 
 
 def read_multispectral(folder: str | Path) -> Multispectral:

@@ -31,6 +31,7 @@ from lanterna.tiler.dataset.writer import DatasetWriter, check_identifier
 from lanterna.tiler.documents import (
     MAX_DOCUMENT_BYTES,
     check_document,
+    document_type,
     json_path,
     load_json,
     parse_json,
@@ -63,14 +64,8 @@ def is_manifest_source(source: str | Path) -> bool:
     """True for an http(s) URL, or a ``.json`` regular file holding a IIIF ``Manifest``."""
     if is_url(source):
         return True
-    path = Path(source)
-    if path.suffix.lower() != ".json" or not path.is_file():
-        return False
-    try:
-        doc = load_json(path)
-    except LanternaInputError:
-        return False  # the description reader reports it
-    return isinstance(doc, dict) and doc.get("type") == "Manifest"
+    path = Path(source)  # a bad manifest is for the description reader to report
+    return path.suffix.lower() == ".json" and document_type(path) == "Manifest"
 
 
 def read_manifest(source: str | Path) -> dict[str, Any]:
