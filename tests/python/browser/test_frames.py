@@ -23,7 +23,6 @@ from lanterna.tiler.formats.ptm_model import Ptm
 from lanterna.tiler.iiif.pyramid import vips_from_array
 from lanterna.tiler.render import level_channels, render
 from tests.python.fixtures import browser
-from tests.python.fixtures.servers import LiveServer
 
 pytestmark = pytest.mark.browser
 
@@ -66,12 +65,8 @@ def dataset(tmp_path_factory: pytest.TempPathFactory) -> Data:
 def shoot(root: Path, shots: list[browser.Shot],
           viewport: tuple[int, int]) -> list[npt.NDArray[np.uint8]]:
     """Render the shots from a cold page at the viewer's own full detail."""
-    server = LiveServer(root)
-    try:
-        url = f"{server.url}/viewer/?manifest={server.url}/datasets/frames/manifest.json&layer=ptm"
-        return browser.render(url, shots, viewport=viewport, options={"minPixelRatio": None})
-    finally:
-        server.close()
+    return browser.render_dataset(root, "frames", shots, viewport=viewport, query="&layer=ptm",
+                                  options={"minPixelRatio": None})
 
 
 def tiles_requested(meta: dict[str, Any]) -> set[tuple[str, str, str]]:

@@ -39,7 +39,6 @@ from lanterna.tiler.render import (
     render,
 )
 from tests.python.fixtures import browser
-from tests.python.fixtures.servers import LiveServer
 
 pytestmark = pytest.mark.browser
 
@@ -194,14 +193,9 @@ def run(tmp_path_factory: pytest.TempPathFactory) -> Iterator[Run]:
             shots.append(ModeShot(lid, mode, PARAM_LIGHT, 1, PARAMS[mode]))
     for i, s in enumerate(shots):
         s.out = tmp / f"shot{i:04d}.rgba"
-    server = LiveServer(tmp)
-    try:
-        url = f"{server.url}/viewer/?manifest={server.url}/datasets/modes/manifest.json"
-        frames = browser.render(url, [browser.Shot(s.light, s.region, s.out, s.layer, s.mode,
-                                                   full_params(s.params)) for s in shots],
-                                viewport=VIEW)
-    finally:
-        server.close()
+    frames = browser.render_dataset(tmp, "modes", [browser.Shot(s.light, s.region, s.out, s.layer,
+                                                                s.mode, full_params(s.params))
+                                                   for s in shots], viewport=VIEW)
     channels = {(lid, f): level_channels(tmp / "modes", block, f, ZOOMS[f] + VIEW)
                 for lid, block in layers.items() for f in ZOOMS}
     results: dict[tuple[str, str], list[Any]] = {}

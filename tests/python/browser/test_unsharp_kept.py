@@ -24,7 +24,6 @@ import pytest
 from lanterna.tiler.render import level_channels, render
 from tests.python.browser.test_modes import TOLERANCE, VIEW, build, full_params
 from tests.python.fixtures import browser
-from tests.python.fixtures.servers import LiveServer
 
 pytestmark = pytest.mark.browser
 
@@ -114,12 +113,7 @@ def frames(tmp_path_factory: pytest.TempPathFactory) -> dict[str, tuple[Step, An
         extra: dict[str, Any] = {"lens": s.lens or {"enabled": False}}
         shots.append(browser.Shot(s.light, s.region, tmp / f"step{i:02d}.rgba", s.layer, s.mode,
                                   full_params(s.params), extra))
-    server = LiveServer(tmp)
-    try:
-        url = f"{server.url}/viewer/?manifest={server.url}/datasets/modes/manifest.json"
-        got = browser.render(url, shots, viewport=VIEW)
-    finally:
-        server.close()
+    got = browser.render_dataset(tmp, "modes", shots, viewport=VIEW)
 
     def reference(layer: str, s: Step, mode: str, params: dict[str, float]) -> Any:
         ch = level_channels(tmp / "modes", layers[layer], s.factor, s.origin + VIEW)
