@@ -20,6 +20,7 @@ from tests.python.packaging.test_npm_pack import (  # noqa: F401 (the fixtures)
     PLAYWRIGHT,
     TSC,
     VITE,
+    bundle_page,
     project,
     run,
     tarball,
@@ -90,17 +91,11 @@ def test_attach_runs_on_a_pages_own_viewer(project: Path) -> None:  # noqa: F811
         pytest.fail("Debian's Chromium is missing: apt-get install -y chromium (make test does it)")
     page = project / "attach"
     page.mkdir(exist_ok=True)
-    (page / "index.html").write_text(
-        '<!doctype html><html><head><meta charset="utf-8"></head><body>'
-        '<div id="host" style="width: 320px; height: 240px"></div>'
-        '<script type="module" src="./main.js"></script></body></html>')
-    (page / "main.js").write_text(MAIN_JS)
-    run(["node", str(VITE), "build", ".", "--outDir", "dist", "--emptyOutDir", "--minify", "false",
-         "--base", "./", "--logLevel", "warn"], page)
+    bundle = bundle_page(page, "host", MAIN_JS)
     drive = project / "drive-attach.mjs"
     drive.write_text(DRIVE_MJS.format(playwright=json.dumps(str(PLAYWRIGHT)),
                                       chromium=json.dumps(str(CHROMIUM))))
-    with StaticServer(page / "dist") as server:
+    with StaticServer(bundle) as server:
         proc = run(["node", str(drive), f"{server.url}/index.html"], project)
     report = json.loads(proc.stdout.strip().splitlines()[-1])
     assert report["errors"] == []

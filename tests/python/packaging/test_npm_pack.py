@@ -183,17 +183,24 @@ def test_types_check_in_a_strict_consumer(project: Path) -> None:
     assert proc.returncode != 0 and "wrong.ts(" in proc.stdout, proc.stdout
 
 
+def bundle_page(folder: Path, element_id: str, main_js: str) -> Path:
+    """Write a page with one 320×240 ``div`` ``element_id`` that runs ``main_js``, bundle it
+    with the workspace's Vite (imports resolved from the scratch project's ``node_modules``)
+    and return the bundle's folder."""
+    (folder / "index.html").write_text(
+        '<!doctype html><html><head><meta charset="utf-8"></head><body>'
+        f'<div id="{element_id}" style="width: 320px; height: 240px"></div>'
+        '<script type="module" src="./main.js"></script></body></html>')
+    (folder / "main.js").write_text(main_js)
+    run(["node", str(VITE), "build", ".", "--outDir", "dist", "--emptyOutDir", "--minify", "false",
+         "--base", "./", "--logLevel", "warn"], folder)
+    return folder / "dist"
+
+
 @pytest.fixture()
 def served(project: Path) -> Iterator[str]:
     """The consumer page, bundled with the workspace's Vite and served on a loopback port."""
-    (project / "index.html").write_text(
-        '<!doctype html><html><head><meta charset="utf-8"></head><body>'
-        '<div id="viewer" style="width: 320px; height: 240px"></div>'
-        '<script type="module" src="./main.js"></script></body></html>')
-    (project / "main.js").write_text(MAIN_JS)
-    run(["node", str(VITE), "build", ".", "--outDir", "dist", "--emptyOutDir", "--minify", "false",
-         "--base", "./", "--logLevel", "warn"], project)
-    with StaticServer(project / "dist") as server:
+    with StaticServer(bundle_page(project, "viewer", MAIN_JS)) as server:
         yield f"{server.url}/index.html"
 
 
