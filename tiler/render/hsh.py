@@ -135,14 +135,24 @@ def hsh_color(coeffs: F32, weights: npt.ArrayLike, intensity: float = 1.0) -> F3
 
 def hsh_surface(layer: Mapping[str, Any], channels: Mapping[str, F32]) -> Surface:
     """Build the :class:`~.shading.Surface` of an HSH layer from its dequantised channels."""
+    return basis_surface(layer, channels, hsh_normals, hsh_weights, hsh_basis)
+
+
+def basis_surface(layer: Mapping[str, Any], channels: Mapping[str, F32],
+                  normals: Callable[[F32], F32], weights: Callable[[float, float, int], Any],
+                  basis: Callable[[Any, Any, int], Any]) -> Surface:
+    """The :class:`~.shading.Surface` of a layer of per-channel coefficients of a light basis in
+    HSH's channel layout (HSH, Relight's sh): its ``normals`` from the coefficients, colour
+    under a light from the basis's ``weights`` (one light) and albedo from its ``basis``
+    evaluated at each pixel's normal (arrays of light directions)."""
     a = hsh_coefficients(layer, channels)
     terms = a.shape[-1]
-    n = hsh_normals(a)
+    n = normals(a)
 
     def color(light: Light) -> F32:
-        return hsh_color(a, hsh_weights(light.lu, light.lv, terms), light.intensity)
+        return hsh_color(a, weights(light.lu, light.lv, terms), light.intensity)
 
-    albedo = f32(np.sum(a * hsh_basis(n[..., 0], n[..., 1], terms)[..., None, :], axis=-1,
+    albedo = f32(np.sum(a * basis(n[..., 0], n[..., 1], terms)[..., None, :], axis=-1,
                         dtype=np.float32))
     return Surface(color=color, normal=n, albedo=albedo, special=hsh_special_modes(color, n))
 

@@ -17,14 +17,8 @@ import numpy.typing as npt
 
 from lanterna.tiler.formats.sh_model import SH_TERMS, sh_basis, sh_weights
 
-from .hsh import (
-    NORMAL_LIGHTS,
-    hsh_coefficients,
-    hsh_color,
-    hsh_special_modes,
-    normals_from_relights,
-)
-from .shading import F32, Light, Surface, f32
+from .hsh import NORMAL_LIGHTS, basis_surface, normals_from_relights
+from .shading import F32, Surface
 
 
 def sh_normals(coeffs: npt.ArrayLike) -> F32:
@@ -40,14 +34,6 @@ def sh_normals(coeffs: npt.ArrayLike) -> F32:
 
 
 def sh_surface(layer: Mapping[str, Any], channels: Mapping[str, F32]) -> Surface:
-    """Build the :class:`~.shading.Surface` of an sh layer from its dequantised channels."""
-    a = hsh_coefficients(layer, channels)
-    terms = a.shape[-1]
-    n = sh_normals(a)
-
-    def color(light: Light) -> F32:
-        return hsh_color(a, sh_weights(light.lu, light.lv, terms), light.intensity)
-
-    albedo = f32(np.sum(a * sh_basis(n[..., 0], n[..., 1], terms)[..., None, :], axis=-1,
-                        dtype=np.float32))
-    return Surface(color=color, normal=n, albedo=albedo, special=hsh_special_modes(color, n))
+    """Build the :class:`~.shading.Surface` of an sh layer from its dequantised channels: HSH's,
+    with the SH basis."""
+    return basis_surface(layer, channels, sh_normals, sh_weights, sh_basis)
