@@ -39,6 +39,7 @@ from lanterna.tiler.render import (
     render,
 )
 from tests.python.fixtures import browser
+from tests.python.fixtures.fields import smooth_field
 
 pytestmark = pytest.mark.browser
 
@@ -66,16 +67,9 @@ PARAMS = {  # one non-default set per mode
 
 def smooth(rng: np.random.Generator, lo: float, hi: float, shape: tuple[int, ...] = (),
            cell: int = 24, noise: float = 0.15) -> npt.NDArray[np.float64]:
-    """A smooth random field (bilinear over a coarse grid) plus a little per-pixel noise."""
-    coarse = rng.uniform(0, 1, (H // cell + 2, W // cell + 2) + shape)
-    y, x = np.arange(H) / cell, np.arange(W) / cell
-    y0, x0 = y.astype(int), x.astype(int)
-    fy = (y - y0).reshape((H, 1) + (1,) * len(shape))
-    fx = (x - x0).reshape((1, W) + (1,) * len(shape))
-    top = coarse[y0][:, x0] * (1 - fx) + coarse[y0][:, x0 + 1] * fx
-    bottom = coarse[y0 + 1][:, x0] * (1 - fx) + coarse[y0 + 1][:, x0 + 1] * fx
-    field_ = (top * (1 - fy) + bottom * fy) * (1 - noise) + noise * rng.uniform(0, 1, top.shape)
-    return lo + (hi - lo) * field_
+    """A smooth random field (:func:`smooth_field` in 0–1) plus a little per-pixel noise."""
+    field_ = smooth_field(rng, 0.0, 1.0, (H, W), shape, cell)
+    return lo + (hi - lo) * (field_ * (1 - noise) + noise * rng.uniform(0, 1, field_.shape))
 
 
 def normal_field(rng: np.random.Generator, min_z: float = 0.3) -> npt.NDArray[np.float64]:
