@@ -1,12 +1,16 @@
-"""The α-grid solve of :mod:`.ward_solve`, compiled per pixel (Numba).
+"""The α-grid solve of :mod:`.ward_solve`, compiled (Numba).
 
 numpy evaluates the Ward term of every sample of every pixel at every α of the grid as whole
-``(N, b, W)`` arrays (≈ 10 passes over memory per α); compiled, a pixel gathers its valid samples
-once (cosi, tan²θh, √(cosi/cosr)) and, per α, accumulates its four sums in registers, skipping
-the samples whose lobe value is below e⁻⁵⁰ of the peak (they change no sum in float64).  The
-steps and constants are :func:`~lanterna.tiler.fit.ward_solve.solve_ward_band`'s (the
-reference, checked in tests/python/fit/test_engine_kernels.py); sums run in another order, so a
-pixel whose best α is a near tie may pick the neighbouring grid value.
+``(N, b, W)`` arrays (≈ 10 passes over memory per α).  Compiled, the pixels are solved
+:data:`_LANES` side by side, one parallel task per group: each pixel's samples are gathered once
+(cosi, tan²θh, √(cosi/cosr), colour; an excluded sample kept as one that adds exactly 0), then
+per α one loop over the lanes, branch-free and with :func:`~.exp_kernel.exp_neg` instead of
+libm's ``exp``, so it vectorises, sums each pixel's samples in light order; and each pixel's
+constrained 2×2 solve at that α keeps the best α so far.  A sample whose lobe value is below
+e⁻⁵⁰ of the peak adds 0 (as skipped: it changes no float64 sum).  The steps and constants are
+:func:`~lanterna.tiler.fit.ward_solve.solve_ward_band`'s (the reference, checked in
+tests/python/fit/test_engine_kernels.py); sums run in another order, so a pixel whose best α is
+a near tie may pick the neighbouring grid value.
 """
 
 from __future__ import annotations
@@ -19,10 +23,12 @@ import numpy.typing as npt
 
 from . import compiled  # noqa: F401 - the threading layer, before any kernel runs
 from . import ward_solve as ws
+from .exp_kernel import exp_neg
 
 _SQRT3 = 1.0 / math.sqrt(3.0)
 _SKIP = 50.0  # exp(-50) ≈ 2e-22: the sample adds nothing to a float64 sum
-_CHUNK = 256  # pixels per parallel task, sharing one set of scratch arrays
+_LANES = 32  # pixels solved side by side: one parallel task, one vectorised loop
+_STATS = 12  # Σaa, Σay (r, g, b), Σyy, 1/Σaa, Lambert-only kd (r, g, b), its chroma
 
 
 @numba.njit(cache=True, nogil=True)
@@ -64,51 +70,64 @@ def _ward(raw: npt.NDArray[np.float32], nrm: npt.NDArray[np.float64],
           grid: npt.NDArray[np.float64], min_cosi: float, saturated: float, cos_max: float,
           min_lobe: int, lobe_width: float, kd_out: npt.NDArray[np.float32],
           ks_out: npt.NDArray[np.float32], al_out: npt.NDArray[np.float32]) -> None:
-    n, p = raw.shape[0], raw.shape[1]
-    for chunk in numba.prange((p + _CHUNK - 1) // _CHUNK):
-        q0, q1 = chunk * _CHUNK, min(p, (chunk + 1) * _CHUNK)
-        samples = np.empty((q1 - q0, n, 3), np.float32)  # the chunk pixel-major
-        for i in range(n):
-            for q in range(q0, q1):
-                for c in range(3):
-                    samples[q - q0, i, c] = raw[i, q, c]
-        scratch = np.empty((6, n))  # a, tan², √(cosi/cosr), y_r, y_g, y_b of the valid samples
-        for q in range(q0, q1):
-            _pixel(samples[q - q0], nrm[q], lights, half, grid, min_cosi, saturated, cos_max,
-                   min_lobe, lobe_width, scratch, kd_out[q], ks_out[q], al_out[q:q + 1])
+    n, p, nk = raw.shape[0], raw.shape[1], grid.shape[0]
+    qa = 1.0 / (grid * grid)
+    inv4 = 1.0 / (4.0 * (grid * grid))
+    for block in numba.prange((p + _LANES - 1) // _LANES):
+        q0 = block * _LANES
+        lanes = min(p, q0 + _LANES) - q0
+        samples = np.empty((6, n, lanes))
+        stats = np.empty((_STATS, lanes))
+        sums = np.empty((6, lanes))
+        best = np.empty((8, lanes))  # SSE, kd (r, g, b), ks (r, g, b), α of the best α so far
+        best[0] = np.inf
+        best[1:7] = 0.0
+        best[7] = grid[-1]
+        for q in range(lanes):
+            _samples(raw, q0 + q, nrm[q0 + q], lights, half, min_cosi, saturated, samples,
+                     stats, q)
+        for k in range(nk):
+            _sums(samples, qa[k], inv4[k], lobe_width, sums)
+            for q in range(lanes):
+                _try_alpha(stats, sums, q, grid[k], cos_max, min_lobe, best)
+        for q in range(lanes):
+            for c in range(3):
+                kd_out[q0 + q, c] = best[1 + c, q]
+                ks_out[q0 + q, c] = best[4 + c, q]
+            al_out[q0 + q] = best[7, q]
 
 
 @numba.njit(cache=True, nogil=True)
-def _pixel(raw: npt.NDArray[np.float32], nrm: npt.NDArray[np.float64],
-           lights: npt.NDArray[np.float64], half: npt.NDArray[np.float64],
-           grid: npt.NDArray[np.float64], min_cosi: float, saturated: float, cos_max: float,
-           min_lobe: int, lobe_width: float, scratch: npt.NDArray[np.float64],
-           kd_out: npt.NDArray[np.float32], ks_out: npt.NDArray[np.float32],
-           al_out: npt.NDArray[np.float32]) -> None:
-    """One pixel: its samples ``raw (N, 3)`` and normal; writes its kd, ks and α."""
+def _samples(raw: npt.NDArray[np.float32], px: int, nrm: npt.NDArray[np.float64],
+             lights: npt.NDArray[np.float64], half: npt.NDArray[np.float64], min_cosi: float,
+             saturated: float, samples: npt.NDArray[np.float64],
+             stats: npt.NDArray[np.float64], q: int) -> None:
+    """Lane ``q`` of ``samples``: pixel ``px``'s cosi, tan²θh, √(cosi/cosr) and colour per
+    light, an excluded sample as one that adds nothing (tan²θh = ∞, the rest 0); and its
+    ``stats``: Σaa, Σay (r, g, b), Σyy, 1/Σaa, the Lambert-only kd and its chroma."""
     n = raw.shape[0]
     nx, ny, nz = nrm[0], nrm[1], nrm[2]
     cosr = max(nz, 1e-4)
-    av, tv, gv, y0, y1, y2 = (scratch[0], scratch[1], scratch[2], scratch[3], scratch[4],
-                              scratch[5])
-    m = 0
     saa = say0 = say1 = say2 = yy = 0.0
     for i in range(n):
         cosi = max(lights[i, 0] * nx + lights[i, 1] * ny + lights[i, 2] * nz, 0.0)
-        r, g, b = float(raw[i, 0]), float(raw[i, 1]), float(raw[i, 2])
+        r, g, b = float(raw[i, px, 0]), float(raw[i, px, 1]), float(raw[i, px, 2])
         if cosi < min_cosi or max(r, max(g, b)) >= saturated:
+            samples[0, i, q] = 0.0
+            samples[1, i, q] = np.inf
+            for c in range(2, 6):
+                samples[c, i, q] = 0.0
             continue
         nh = max(half[i, 0] * nx + half[i, 1] * ny + half[i, 2] * nz, 1e-4)
-        av[m] = cosi
-        tv[m] = (1.0 - nh * nh) / (nh * nh)
-        gv[m] = math.sqrt(cosi / cosr)
-        y0[m], y1[m], y2[m] = r, g, b
+        samples[0, i, q] = cosi
+        samples[1, i, q] = (1.0 - nh * nh) / (nh * nh)
+        samples[2, i, q] = math.sqrt(cosi / cosr)
+        samples[3, i, q], samples[4, i, q], samples[5, i, q] = r, g, b
         saa += cosi * cosi
         say0 += cosi * r
         say1 += cosi * g
         say2 += cosi * b
         yy += r * r + g * g + b * b
-        m += 1
     inv_saa = 1.0 / max(saa, 1e-12)
     kl0, kl1, kl2 = max(say0 * inv_saa, 0.0), max(say1 * inv_saa, 0.0), max(say2 * inv_saa, 0.0)
     norm = math.sqrt(kl0 * kl0 + kl1 * kl1 + kl2 * kl2)
@@ -116,47 +135,54 @@ def _pixel(raw: npt.NDArray[np.float32], nrm: npt.NDArray[np.float64],
         c0, c1, c2 = kl0 / norm, kl1 / norm, kl2 / norm
     else:
         c0 = c1 = c2 = _SQRT3
-    best = np.inf
-    bd0 = bd1 = bd2 = bs0 = bs1 = bs2 = 0.0
-    al_b = grid[-1]
-    for alpha in grid:
-        a2 = alpha * alpha
-        inv4 = 1.0 / (4.0 * a2)
-        qa = 1.0 / a2
-        sab = sbb = sby0 = sby1 = sby2 = 0.0
-        support = 0
-        for j in range(m):
-            x = tv[j] * qa
-            if x <= lobe_width:
-                support += 1
-            if x > _SKIP:
-                continue
-            bw = gv[j] * math.exp(-x) * inv4
-            sab += av[j] * bw
-            sbb += bw * bw
-            sby0 += bw * y0[j]
-            sby1 += bw * y1[j]
-            sby2 += bw * y2[j]
-        det = saa * sbb - sab * sab
-        if det > 1e-12 * max(saa * sbb, 1e-30) and support >= min_lobe:
-            k0, k1, k2 = _project((saa * sby0 - sab * say0) / det, (saa * sby1 - sab * say1) / det,
-                                  (saa * sby2 - sab * say2) / det, c0, c1, c2, cos_max)
-            s0, d0 = _channel(min(k0, 1.0), say0, sby0, sab, sbb, inv_saa)
-            s1, d1 = _channel(min(k1, 1.0), say1, sby1, sab, sbb, inv_saa)
-            s2, d2 = _channel(min(k2, 1.0), say2, sby2, sab, sbb, inv_saa)
-        else:
-            s0 = s1 = s2 = 0.0
-            d0, d1, d2 = kl0, kl1, kl2
-        sse = (yy - 2 * (d0 * say0 + s0 * sby0 + d1 * say1 + s1 * sby1 + d2 * say2 + s2 * sby2)
-               + (d0 * d0 + d1 * d1 + d2 * d2) * saa + 2 * (d0 * s0 + d1 * s1 + d2 * s2) * sab
-               + (s0 * s0 + s1 * s1 + s2 * s2) * sbb)
-        if sse < best:
-            best = sse
-            bd0, bd1, bd2, bs0, bs1, bs2 = d0, d1, d2, s0, s1, s2
-            al_b = alpha
-    kd_out[0], kd_out[1], kd_out[2] = bd0, bd1, bd2
-    ks_out[0], ks_out[1], ks_out[2] = bs0, bs1, bs2
-    al_out[0] = al_b
+    for c, v in enumerate((saa, say0, say1, say2, yy, inv_saa, kl0, kl1, kl2, c0, c1, c2)):
+        stats[c, q] = v
+
+
+@numba.njit(cache=True, nogil=True)
+def _sums(samples: npt.NDArray[np.float64], qa: float, inv4: float, lobe_width: float,
+          sums: npt.NDArray[np.float64]) -> None:
+    """Per lane at one α: Σab, Σbb, Σby (r, g, b) over the samples in light order, and the
+    number of samples inside the lobe.  Branch-free over the lanes, so the loop vectorises
+    (a sample with x > :data:`_SKIP` adds an exact 0, as if skipped)."""
+    sums[:] = 0.0
+    lanes = sums.shape[1]
+    for i in range(samples.shape[1]):
+        for q in range(lanes):
+            x = samples[1, i, q] * qa
+            sums[5, q] += 1.0 if x <= lobe_width else 0.0
+            bw = samples[2, i, q] * exp_neg(min(x, _SKIP)) * inv4 if x <= _SKIP else 0.0
+            sums[0, q] += samples[0, i, q] * bw
+            sums[1, q] += bw * bw
+            sums[2, q] += bw * samples[3, i, q]
+            sums[3, q] += bw * samples[4, i, q]
+            sums[4, q] += bw * samples[5, i, q]
+
+
+@numba.njit(cache=True, nogil=True, inline="always")
+def _try_alpha(st: npt.NDArray[np.float64], sm: npt.NDArray[np.float64], q: int, alpha: float,
+               cos_max: float, min_lobe: int, best: npt.NDArray[np.float64]) -> None:
+    """Lane ``q``'s constrained solve at ``alpha`` from its ``stats`` and ``sums``; kept in
+    ``best`` if its SSE is the smallest so far."""
+    saa, say0, say1, say2, yy, inv_saa = st[0, q], st[1, q], st[2, q], st[3, q], st[4, q], st[5, q]
+    sab, sbb, sby0, sby1, sby2 = sm[0, q], sm[1, q], sm[2, q], sm[3, q], sm[4, q]
+    det = saa * sbb - sab * sab
+    if det > 1e-12 * max(saa * sbb, 1e-30) and sm[5, q] >= min_lobe:
+        k0, k1, k2 = _project((saa * sby0 - sab * say0) / det, (saa * sby1 - sab * say1) / det,
+                              (saa * sby2 - sab * say2) / det, st[9, q], st[10, q], st[11, q],
+                              cos_max)
+        s0, d0 = _channel(min(k0, 1.0), say0, sby0, sab, sbb, inv_saa)
+        s1, d1 = _channel(min(k1, 1.0), say1, sby1, sab, sbb, inv_saa)
+        s2, d2 = _channel(min(k2, 1.0), say2, sby2, sab, sbb, inv_saa)
+    else:
+        s0 = s1 = s2 = 0.0
+        d0, d1, d2 = st[6, q], st[7, q], st[8, q]
+    sse = (yy - 2 * (d0 * say0 + s0 * sby0 + d1 * say1 + s1 * sby1 + d2 * say2 + s2 * sby2)
+           + (d0 * d0 + d1 * d1 + d2 * d2) * saa + 2 * (d0 * s0 + d1 * s1 + d2 * s2) * sab
+           + (s0 * s0 + s1 * s1 + s2 * s2) * sbb)
+    if sse < best[0, q]:
+        best[0, q], best[1, q], best[2, q], best[3, q] = sse, d0, d1, d2
+        best[4, q], best[5, q], best[6, q], best[7, q] = s0, s1, s2, alpha
 
 
 @numba.njit(cache=True, nogil=True, inline="always")
