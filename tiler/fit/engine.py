@@ -39,6 +39,7 @@ from .hsh import hsh_design_matrix, hsh_pinv
 from .linear_kernel import linear_band
 from .lrgb_kernel import lrgb_held_out_compiled
 from .normals import check_lights
+from .normals_held_out_kernel import MAX_LIGHTS
 from .ptm import ptm_design_matrix, ptm_pinv
 from .sinks import Sinks
 from .unit_kernel import to_unit_compiled
@@ -168,7 +169,15 @@ class _Step:
             parts.append(outs)
         rest = [k for k in keys if k not in WHOLE_BAND_KEYS]
         if rest:
+            fused = self.loo is not None and rest == ["normals"] and not self.full.linear and \
+                len(self.full.lights) <= MAX_LIGHTS
             for piece in self._floats(band, div):
+                if fused:  # the fit and its leave-one-out twin in one pass
+                    out, err = fb.normals_band_held_out(piece, self.full.lights, self.train,
+                                                        self.held)
+                    sse["normals"] += err
+                    parts.append({"normals": out} if self.layers else {})
+                    continue
                 outs = self.full.solve(piece, rest) if self.layers else {}
                 if self.loo is not None:
                     for k, err in self._held_out(piece, self.loo, rest).items():

@@ -58,47 +58,94 @@ def _chunk(lum: npt.NDArray[np.floating], colour: npt.NDArray[np.floating],
     with every loop over the pixels innermost, so it runs on vectors of pixels.  Each pixel's
     sums add the same terms in the same order (a sample left out adds 0.0, which changes no
     sum), so the results are bit for bit those of the pixel loop."""
+    y = chunk_luminance(lum, q0, q1)
+    rows = np.arange(lum.shape[0])
+    keep = window(y, ranks(y), rows, lo, hi, shadow)
+    nrm, alb = fit_rows(y, keep, rows, lights, colour, q0)
+    for q in range(q1 - q0):
+        for c in range(3):
+            normals[q0 + q, c] = nrm[c, q]
+            albedo[q0 + q, c] = alb[c, q]
+
+
+@numba.njit(cache=True, nogil=True)
+def chunk_luminance(lum: npt.NDArray[np.floating], q0: int, q1: int) -> npt.NDArray[np.generic]:
+    """Pixels ``q0:q1`` of ``lum (N, P)``, contiguous rows: the loops over them vectorise."""
     n, m = lum.shape[0], q1 - q0
-    y = np.empty((n, m), lum.dtype)  # contiguous rows: the loops below vectorise
+    y = np.empty((n, m), lum.dtype)
     for i in range(n):
         y[i] = lum[i, q0:q1]
+    return y
+
+
+@numba.njit(cache=True, nogil=True)
+def ranks(y: npt.NDArray[np.generic]) -> npt.NDArray[np.int32]:
+    """``(N, m)``: each sample's stable rank among its pixel's N (earlier equal ones lower)."""
+    n, m = y.shape
+    rank = np.zeros((n, m), np.int32)
+    for i in range(n):
+        yi = y[i]
+        ri = rank[i]
+        for j in range(i):  # earlier equal samples rank lower
+            yj = y[j]
+            for q in range(m):
+                ri[q] += np.int32(yj[q] <= yi[q])
+        for j in range(i + 1, n):
+            yj = y[j]
+            for q in range(m):
+                ri[q] += np.int32(yj[q] < yi[q])
+    return rank
+
+
+@numba.njit(cache=True, nogil=True)
+def window(y: npt.NDArray[np.generic], rank: npt.NDArray[np.int32],
+           rows: npt.NDArray[np.intp], lo: int, hi: int, shadow: float
+           ) -> npt.NDArray[np.bool_]:
+    """``keep (len(rows), m)``: of the samples ``y[rows]`` (``rank`` theirs among them), those
+    ranked in ``[lo, hi)`` and brighter than ``shadow`` × their maximum; every such brighter
+    one where fewer than 3."""
+    n, m = rows.shape[0], y.shape[1]
     threshold = np.empty(m)
     for q in range(m):
-        threshold[q] = float(y[0, q])
-    for i in range(1, n):
+        threshold[q] = float(y[rows[0], q])
+    for j in range(1, n):
+        yj = y[rows[j]]
         for q in range(m):
-            threshold[q] = max(threshold[q], float(y[i, q]))
+            threshold[q] = max(threshold[q], float(yj[q]))
     for q in range(m):
         threshold[q] *= shadow
     keep = np.empty((n, m), np.bool_)
     count = np.zeros(m, np.int32)
-    rank = np.empty(m, np.int32)
-    for i in range(n):
-        yi = y[i]
-        rank[:] = 0
-        for j in range(i):  # earlier equal samples rank lower
-            yj = y[j]
-            for q in range(m):
-                rank[q] += np.int32(yj[q] <= yi[q])
-        for j in range(i + 1, n):
-            yj = y[j]
-            for q in range(m):
-                rank[q] += np.int32(yj[q] < yi[q])
-        ki = keep[i]
+    for j in range(n):
+        yj, rj, kj = y[rows[j]], rank[j], keep[j]
         for q in range(m):
-            k = (rank[q] >= lo) & (rank[q] < hi) & (float(yi[q]) > threshold[q])
-            ki[q] = k
+            k = (rj[q] >= lo) & (rj[q] < hi) & (float(yj[q]) > threshold[q])
+            kj[q] = k
             count[q] += np.int32(k)
-    for i in range(n):
+    for j in range(n):
+        yj = y[rows[j]]
         for q in range(m):
             if count[q] < 3:
-                keep[i, q] = float(y[i, q]) > threshold[q]
+                keep[j, q] = float(yj[q]) > threshold[q]
+    return keep
+
+
+@numba.njit(cache=True, nogil=True)
+def fit_rows(y: npt.NDArray[np.generic], keep: npt.NDArray[np.bool_],
+             rows: npt.NDArray[np.intp], lights: npt.NDArray[np.float64],
+             colour: npt.NDArray[np.floating], q0: int
+             ) -> tuple[npt.NDArray[np.float64], npt.NDArray[np.float64]]:
+    """Normals and albedo ``(3, m)`` of the kept samples of the lights ``rows`` (summed in
+    their order); ``colour (N, P, 3)`` read from pixel ``q0``."""
+    n, m = rows.shape[0], y.shape[1]
     a = np.zeros((9, m))  # a00 a11 a22 a01 a02 a12 b0 b1 b2
-    for i in range(n):
+    for j in range(n):
+        i = rows[j]
         lx, ly, lz = lights[i, 0], lights[i, 1], lights[i, 2]
+        yr, kj = y[i], keep[j]
         for q in range(m):
-            k = keep[i, q]
-            yi = float(y[i, q])
+            k = kj[q]
+            yi = float(yr[q])
             a[0, q] += lx * lx if k else 0.0
             a[1, q] += ly * ly if k else 0.0
             a[2, q] += lz * lz if k else 0.0
@@ -112,25 +159,25 @@ def _chunk(lum: npt.NDArray[np.floating], colour: npt.NDArray[np.floating],
     for q in range(m):
         g0, g1, g2 = _solve3(a[0, q] + _RIDGE, a[1, q] + _RIDGE, a[2, q] + _RIDGE, a[3, q],
                              a[4, q], a[5, q], a[6, q], a[7, q], a[8, q])
-        nx, ny, nz = _unit(g0, g1, g2)
-        nrm[0, q], nrm[1, q], nrm[2, q] = nx, ny, nz
-        normals[q0 + q, 0], normals[q0 + q, 1], normals[q0 + q, 2] = nx, ny, nz
+        nrm[0, q], nrm[1, q], nrm[2, q] = _unit(g0, g1, g2)
     r = np.zeros((4, m))  # den r0 r1 r2
-    for i in range(n):
+    for j in range(n):
+        i = rows[j]
         lx, ly, lz = lights[i, 0], lights[i, 1], lights[i, 2]
-        c = colour[i, q0:q1]
+        c = colour[i, q0:q0 + m]
+        kj = keep[j]
         for q in range(m):
-            k = keep[i, q]
+            k = kj[q]
             s = max(0.0, nrm[0, q] * lx + nrm[1, q] * ly + nrm[2, q] * lz) if k else 0.0
             r[0, q] += s * s
             r[1, q] += s * c[q, 0] if k else 0.0
             r[2, q] += s * c[q, 1] if k else 0.0
             r[3, q] += s * c[q, 2] if k else 0.0
+    alb = np.empty((3, m))
     for q in range(m):
         den = max(r[0, q], 1e-12)
-        albedo[q0 + q, 0] = r[1, q] / den
-        albedo[q0 + q, 1] = r[2, q] / den
-        albedo[q0 + q, 2] = r[3, q] / den
+        alb[0, q], alb[1, q], alb[2, q] = r[1, q] / den, r[2, q] / den, r[3, q] / den
+    return nrm, alb
 
 
 @numba.njit(cache=True, nogil=True, inline="always")
