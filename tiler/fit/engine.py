@@ -37,7 +37,7 @@ from lanterna.tiler.render.shading import linear_to_srgb, srgb_to_linear
 from . import bands as fb
 from .hsh import hsh_design_matrix, hsh_pinv
 from .linear_kernel import linear_band
-from .lrgb_kernel import lrgb_held_out_compiled
+from .lrgb_kernel import lrgb_band_held_out_compiled
 from .normals import check_lights
 from .normals_held_out_kernel import MAX_LIGHTS
 from .ptm import ptm_design_matrix, ptm_pinv
@@ -193,15 +193,19 @@ class _Step:
         n, b, w, c = band.shape
         flat = np.ascontiguousarray(band).reshape(n, -1)
         outs: dict[str, fb.Out] = {}
-        if "ptm-lrgb" in keys:
-            if self.layers:
-                outs["ptm-lrgb"] = fb.ptm_lrgb_band(band, self.full.pinv["ptm-lrgb"], div=div)
+        if "ptm-lrgb" in keys:  # the layer and its report in one pass
+            held_out = None
             if self.loo is not None:
                 basis = np.stack([ptm_weights(float(lt[0]), float(lt[1])).astype(np.float32)
                                   for lt in self.full.lights[self.held]])
-                sse["ptm-lrgb"] = lrgb_held_out_compiled(band, self.loo.pinv["ptm-lrgb"],
-                                                         fb.LUMINANCE_WEIGHTS, self.train,
-                                                         self.held, basis, div)
+                held_out = (self.loo.pinv["ptm-lrgb"], self.train, self.held, basis)
+            coeffs, rgb, err = lrgb_band_held_out_compiled(
+                band, self.full.pinv["ptm-lrgb"] if self.layers else None,
+                fb.LUMINANCE_WEIGHTS, div, held_out)
+            if self.layers:
+                outs["ptm-lrgb"] = {"coeffs": coeffs, "rgb": rgb}
+            if held_out is not None:
+                sse["ptm-lrgb"] = err
         for k in (k for k in keys if k in LINEAR_KEYS):
             rows = self.full.pinv[k] if self.layers else np.zeros((0, n), np.float32)
             coeffs = np.empty((rows.shape[0], flat.shape[1]), np.float32)

@@ -12,12 +12,14 @@ import numpy.typing as npt
 import pytest
 
 from lanterna.tiler.fit import sinks
-from lanterna.tiler.fit.bands import predict_ptm_band, ptm_lrgb_band
+from lanterna.tiler.fit.bands import LUMINANCE_WEIGHTS, predict_ptm_band, ptm_lrgb_band
 from lanterna.tiler.fit.engine import fit_stream
 from lanterna.tiler.fit.hsh import hsh_design_matrix
+from lanterna.tiler.fit.lrgb_kernel import lrgb_band_held_out_compiled
 from lanterna.tiler.fit.normals import solve_normals_band
 from lanterna.tiler.fit.ptm import ptm_design_matrix, ptm_pinv
 from lanterna.tiler.fit.ward import fit_ward
+from lanterna.tiler.formats.ptm_model import ptm_weights
 from tests.python.fixtures.photos import spiral_lights
 
 F64 = npt.NDArray[np.float64]
@@ -150,3 +152,29 @@ def test_compiled_lrgb_leave_one_out_equals_refit_and_predict(tmp_path: Path) ->
         expected.append(10 * math.log10(1 / np.mean((pred - img[i]) ** 2)))
     assert report["heldOut"] == held.tolist()
     assert np.allclose(report["psnr"], expected, atol=2e-3), (report["psnr"], expected)
+
+
+def test_lrgb_pass_reads_8_and_16_bit_samples_as_their_floats() -> None:
+    """The table of 8-/16-bit values gives the bits of the division; the layer and the report
+    of one pass are those of a pass for each."""
+    rng = np.random.default_rng(4)
+    _, lights, _ = _scene()
+    held = np.arange(0, N, 7)
+    train = np.setdiff1d(np.arange(N), held)
+    pinv = ptm_pinv(ptm_design_matrix(lights)).astype(np.float32)
+    pinv_t = ptm_pinv(ptm_design_matrix(lights[train])).astype(np.float32)
+    basis = np.stack([ptm_weights(float(lt[0]), float(lt[1])) for lt in lights[held]])
+    loo = (pinv_t, train, held, basis.astype(np.float32))
+    for dtype, full in ((np.uint8, 255.0), (np.uint16, 65535.0)):
+        ints = rng.integers(0, int(full) + 1, (N, 5, 230, 3)).astype(dtype)
+        ints[:, 0, 0] = 0  # a black pixel
+        floats = ints.astype(np.float32) / np.float32(full)
+        a = lrgb_band_held_out_compiled(ints, pinv, LUMINANCE_WEIGHTS, full, loo)
+        b = lrgb_band_held_out_compiled(floats, pinv, LUMINANCE_WEIGHTS, 1.0, loo)
+        for x, y in zip(a, b, strict=True):
+            assert x.dtype == y.dtype and np.array_equal(x, y)
+        layer = lrgb_band_held_out_compiled(ints, pinv, LUMINANCE_WEIGHTS, full)
+        report = lrgb_band_held_out_compiled(ints, None, LUMINANCE_WEIGHTS, full, loo)
+        assert np.array_equal(layer[0], a[0]) and np.array_equal(layer[1], a[1])
+        assert np.array_equal(report[2], a[2]) and report[0].size == 0
+        assert a[2].shape == (len(held),) and np.all(a[2] > 0) and np.ptp(a[0]) > 0
