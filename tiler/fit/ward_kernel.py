@@ -86,8 +86,11 @@ def _ward(raw: npt.NDArray[np.float32], nrm: npt.NDArray[np.float64],
         for q in range(lanes):
             _samples(raw, q0 + q, nrm[q0 + q], lights, half, min_cosi, saturated, samples,
                      stats, q)
+        nearest = np.empty(n)  # per light, the smallest tan²θh of the lanes
+        for i in range(n):
+            nearest[i] = samples[1, i].min()
         for k in range(nk):
-            _sums(samples, qa[k], inv4[k], lobe_width, sums)
+            _sums(samples, nearest, qa[k], inv4[k], lobe_width, sums)
             for q in range(lanes):
                 _try_alpha(stats, sums, q, grid[k], cos_max, min_lobe, best)
         for q in range(lanes):
@@ -140,14 +143,17 @@ def _samples(raw: npt.NDArray[np.float32], px: int, nrm: npt.NDArray[np.float64]
 
 
 @numba.njit(cache=True, nogil=True)
-def _sums(samples: npt.NDArray[np.float64], qa: float, inv4: float, lobe_width: float,
-          sums: npt.NDArray[np.float64]) -> None:
+def _sums(samples: npt.NDArray[np.float64], nearest: npt.NDArray[np.float64], qa: float,
+          inv4: float, lobe_width: float, sums: npt.NDArray[np.float64]) -> None:
     """Per lane at one α: Σab, Σbb, Σby (r, g, b) over the samples in light order, and the
     number of samples inside the lobe.  Branch-free over the lanes, so the loop vectorises
-    (a sample with x > :data:`_SKIP` adds an exact 0, as if skipped)."""
+    (a sample with x > :data:`_SKIP` adds an exact 0, as if skipped); a light whose smallest
+    tan²θh over the lanes (``nearest``) puts every lane past :data:`_SKIP` is skipped whole."""
     sums[:] = 0.0
     lanes = sums.shape[1]
     for i in range(samples.shape[1]):
+        if nearest[i] * qa > _SKIP:
+            continue
         for q in range(lanes):
             x = samples[1, i, q] * qa
             sums[5, q] += 1.0 if x <= lobe_width else 0.0
