@@ -249,7 +249,7 @@ def compare(args: argparse.Namespace) -> dict[str, Any]:
                 "medianCpuVsDecodeCpu": round(statistics.median(x["fitCpu"] / x["decodeCpu"]
                                                                 for x in rs), 2)}
         return {"size": args.size, "lights": args.lights, "rounds": args.rounds,
-                "other": args.python, "cases": cases}
+                "grain": args.grain, "other": args.python, "cases": cases}
     finally:
         shutil.rmtree(work, ignore_errors=True)
 
