@@ -17,7 +17,13 @@ from lanterna.tiler.formats.ptm_model import ptm_weights
 
 from .linear_kernel import linear_band
 from .lrgb_kernel import lrgb_band_compiled
-from .normals import ITERATIONS, RANK_WINDOW, SHADOW_FRACTION, solve_normals_band
+from .normals import (
+    ITERATIONS,
+    RANK_WINDOW,
+    SHADOW_FRACTION,
+    rank_bounds,
+    solve_normals_band,
+)
 from .normals_held_out_kernel import rank_window_normals_held_out
 from .ward import GLOSS_LIMITS, Ward, fit_ward, predict_ward, quantize_ward
 
@@ -98,13 +104,9 @@ def normals_band_held_out(band: Band, lights: Lights, train: npt.NDArray[np.intp
     (:mod:`.normals_held_out_kernel`); at most ``MAX_LIGHTS`` lights."""
     n, b, w, _ = band.shape
     lum = (band @ np.asarray(LUMINANCE_WEIGHTS, np.float32)).reshape(n, -1)  # float32
-
-    def ranks(count: int) -> tuple[int, int]:
-        return int(np.floor(RANK_WINDOW[0] * count)), int(np.ceil(RANK_WINDOW[1] * count))
-
     nrm, albedo, sse = rank_window_normals_held_out(
-        lum, band.reshape(n, -1, 3), lights.astype(np.float64), ranks(n), SHADOW_FRACTION,
-        train, held, ranks(len(train)))
+        lum, band.reshape(n, -1, 3), lights.astype(np.float64), rank_bounds(RANK_WINDOW, n),
+        SHADOW_FRACTION, train, held, rank_bounds(RANK_WINDOW, len(train)))
     return {"normals": nrm.reshape(b, w, 3), "albedo": albedo.reshape(b, w, 3)}, sse
 
 

@@ -172,7 +172,8 @@ class _Step:
             fused = self.loo is not None and rest == ["normals"] and not self.full.linear and \
                 len(self.full.lights) <= MAX_LIGHTS
             for piece in self._floats(band, div):
-                if fused:  # the fit and its leave-one-out twin in one pass
+                if fused:  # the fit and its leave-one-out twin in one pass (the layer
+                    # is made even for a report alone: it is a small part of the pass)
                     out, err = fb.normals_band_held_out(piece, self.full.lights, self.train,
                                                         self.held)
                     sse["normals"] += err

@@ -107,7 +107,7 @@ def solve_normals_band(lum: npt.NDArray[np.floating], colour: npt.NDArray[np.flo
     lights = _check(lum, colour, lights, rank_window, shadow, iterations, estimator, tuning,
                     tol, scale_floor)
     n, p = lum.shape
-    lo, hi = int(np.floor(rank_window[0] * n)), int(np.ceil(rank_window[1] * n))
+    lo, hi = rank_bounds(rank_window, n)
     if compiled and iterations == 0:
         return rank_window_normals(lum, colour, lights, lo, hi, shadow)
     c = TUNING[estimator] if tuning is None else float(tuning)
@@ -127,6 +127,11 @@ def solve_normals_band(lum: npt.NDArray[np.floating], colour: npt.NDArray[np.flo
             ic = np.ascontiguousarray(np.asarray(colour[:, part, ch], np.float64).T)
             albedo[part, ch] = (ws * ic).sum(axis=1) / den
     return normals, albedo
+
+
+def rank_bounds(rank_window: tuple[float, float], n: int) -> tuple[int, int]:
+    """The kept ranks ``[lo, hi)`` of ``n`` samples for a rank window of fractions."""
+    return int(np.floor(rank_window[0] * n)), int(np.ceil(rank_window[1] * n))
 
 
 def check_lights(lights: npt.ArrayLike) -> F64:
