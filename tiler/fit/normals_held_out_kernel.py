@@ -18,11 +18,11 @@ import numpy as np
 import numpy.typing as npt
 
 from . import compiled  # noqa: F401 - the threading layer, before any kernel runs
-from .normals_kernel import chunk_luminance, fit_rows, ranks, window
+from .normals_kernel import MAX_COUNTED, fit_chunk, fit_rows, window
 
 _CHUNK = 512  # pixels per parallel task
 #: The most lights the pass takes (its ranks are counted, as :mod:`.normals_kernel`'s).
-MAX_LIGHTS = 64
+MAX_LIGHTS = MAX_COUNTED
 
 
 @numba.njit(cache=True, parallel=True, nogil=True)
@@ -31,19 +31,12 @@ def _fused(lum: npt.NDArray[np.floating], colour: npt.NDArray[np.floating],
            train: npt.NDArray[np.intp], held: npt.NDArray[np.intp], lo_t: int, hi_t: int,
            normals: npt.NDArray[np.float32], albedo: npt.NDArray[np.float32],
            sse: npt.NDArray[np.float64]) -> None:
-    n, p = lum.shape
+    p = lum.shape[1]
     nt, h = train.shape[0], held.shape[0]
-    rows = np.arange(n)
     for chunk in numba.prange((p + _CHUNK - 1) // _CHUNK):
         q0, q1 = chunk * _CHUNK, min(p, (chunk + 1) * _CHUNK)
         m = q1 - q0
-        y = chunk_luminance(lum, q0, q1)
-        rank = ranks(y)
-        nrm, alb = fit_rows(y, window(y, rank, rows, lo, hi, shadow), rows, lights, colour, q0)
-        for q in range(m):
-            for c in range(3):
-                normals[q0 + q, c] = nrm[c, q]
-                albedo[q0 + q, c] = alb[c, q]
+        y, rank = fit_chunk(lum, colour, lights, lo, hi, shadow, normals, albedo, q0, q1)
         rank_t = np.empty((nt, m), np.int32)
         for j in range(nt):
             i = train[j]

@@ -8,9 +8,9 @@ rule), ``n = g/|g|`` with ``n_z ≥ 0``, and the per-channel albedo ``Σ w I s /
 steps as :func:`~lanterna.tiler.fit.normals.solve_normals_band` with ``iterations=0`` (its
 reference, checked in tests/python/fit/test_engine_kernels.py); the sums run in another order
 and the 3×3 solve is another algorithm, so results agree to float32 rounding, not bit for bit.
-Up to 64 lights a chunk of pixels runs these steps with the pixels innermost (:func:`_chunk`,
-vectorised: about half the CPU time of the pixel loop), bit for bit the pixel loop's results
-(tests/python/fit/test_fast_paths.py).
+Up to :data:`MAX_COUNTED` lights a chunk of pixels runs these steps with the pixels innermost
+(:func:`fit_chunk`, vectorised: about half the CPU time of the pixel loop), bit for bit the pixel
+loop's results (tests/python/fit/test_fast_paths.py).
 """
 
 from __future__ import annotations
@@ -25,6 +25,9 @@ from . import compiled  # noqa: F401 - the threading layer, before any kernel ru
 
 _RIDGE = 1e-9
 _CHUNK = 512  # pixels per parallel task
+#: The most lights whose ranks are counted (N² comparisons, vectorised across pixels); past it,
+#: each pixel sorts its samples.
+MAX_COUNTED = 64
 
 
 @numba.njit(cache=True, parallel=True, nogil=True)
@@ -32,10 +35,10 @@ def _rank_window(lum: npt.NDArray[np.floating], colour: npt.NDArray[np.floating]
                  lights: npt.NDArray[np.float64], lo: int, hi: int, shadow: float,
                  normals: npt.NDArray[np.float32], albedo: npt.NDArray[np.float32]) -> None:
     n, p = lum.shape
-    if n <= 64:  # ranks by counting, vectorised across the chunk's pixels
+    if n <= MAX_COUNTED:  # ranks by counting, vectorised across the chunk's pixels
         for chunk in numba.prange((p + _CHUNK - 1) // _CHUNK):
             q0, q1 = chunk * _CHUNK, min(p, (chunk + 1) * _CHUNK)
-            _chunk(lum, colour, lights, lo, hi, shadow, normals, albedo, q0, q1)
+            fit_chunk(lum, colour, lights, lo, hi, shadow, normals, albedo, q0, q1)
         return
     for chunk in numba.prange((p + _CHUNK - 1) // _CHUNK):
         q0, q1 = chunk * _CHUNK, min(p, (chunk + 1) * _CHUNK)
@@ -50,22 +53,24 @@ def _rank_window(lum: npt.NDArray[np.floating], colour: npt.NDArray[np.floating]
 
 
 @numba.njit(cache=True, nogil=True)
-def _chunk(lum: npt.NDArray[np.floating], colour: npt.NDArray[np.floating],
+def fit_chunk(lum: npt.NDArray[np.floating], colour: npt.NDArray[np.floating],
            lights: npt.NDArray[np.float64], lo: int, hi: int, shadow: float,
            normals: npt.NDArray[np.float32], albedo: npt.NDArray[np.float32],
-           q0: int, q1: int) -> None:
-    """Pixels ``q0:q1`` (at most 64 lights): :func:`_select` and :func:`_pixel`'s arithmetic
-    with every loop over the pixels innermost, so it runs on vectors of pixels.  Each pixel's
-    sums add the same terms in the same order (a sample left out adds 0.0, which changes no
-    sum), so the results are bit for bit those of the pixel loop."""
+           q0: int, q1: int) -> tuple[npt.NDArray[np.generic], npt.NDArray[np.int32]]:
+    """Pixels ``q0:q1`` (at most :data:`MAX_COUNTED` lights): :func:`_select` and
+    :func:`_pixel`'s arithmetic with every loop over the pixels innermost, so it runs on
+    vectors of pixels.  Each pixel's sums add the same terms in the same order (a sample left
+    out adds 0.0, which changes no sum), so the results are bit for bit those of the pixel
+    loop.  Returns the chunk's luminances and ranks (:func:`chunk_luminance`, :func:`ranks`)."""
     y = chunk_luminance(lum, q0, q1)
     rows = np.arange(lum.shape[0])
-    keep = window(y, ranks(y), rows, lo, hi, shadow)
-    nrm, alb = fit_rows(y, keep, rows, lights, colour, q0)
+    rank = ranks(y)
+    nrm, alb = fit_rows(y, window(y, rank, rows, lo, hi, shadow), rows, lights, colour, q0)
     for q in range(q1 - q0):
         for c in range(3):
             normals[q0 + q, c] = nrm[c, q]
             albedo[q0 + q, c] = alb[c, q]
+    return y, rank
 
 
 @numba.njit(cache=True, nogil=True)
