@@ -66,8 +66,8 @@ def _luminance(planes: npt.NDArray[np.float32], weights: F64) -> F64:
 def _fit(planes: npt.NDArray[np.float32], y: F64, rows: npt.NDArray[np.intp], pinv: F64
          ) -> tuple[F64, F64]:
     """The LRGB fit of the lights ``rows`` from ``y (len(rows), m)``, their luminances
-    (normalised in place): coefficients ``(6, m)`` in 0–255 units and colour ``(3, m)`` in
-    0–255 before rounding."""
+    (normalised in place): coefficients ``(6, m)`` in 0–255 units and colour ``(3, m)``, its
+    0–255 byte values."""
     n, m, k = rows.shape[0], y.shape[1], pinv.shape[0]
     scale = y[0].copy()  # the peak over the lights, then its inverse
     for j in range(1, n):
@@ -98,7 +98,7 @@ def _fit(planes: npt.NDArray[np.float32], y: F64, rows: npt.NDArray[np.intp], pi
         e = energy[q]
         inv = 1.0 / e if e > 1e-12 else 1.0
         for c in range(3):
-            proj[c, q] = np.rint(proj[c, q] * inv * 255.0)
+            proj[c, q] = min(max(np.rint(proj[c, q] * inv * 255.0), 0.0), 255.0)
     return coeffs, proj
 
 
@@ -127,7 +127,7 @@ def _lrgb(band: npt.NDArray[np.generic], d: np.float32, table: npt.NDArray[np.fl
                 for t in range(c6.shape[0]):
                     coeffs[q0 + q, t] = c6[t, q]
                 for c in range(3):
-                    rgb[q0 + q, c] = np.uint8(min(max(colour[c, q], 0.0), 255.0))
+                    rgb[q0 + q, c] = np.uint8(colour[c, q])
 
 
 @numba.njit(cache=True, nogil=True)
@@ -140,7 +140,7 @@ def _held_out(planes: npt.NDArray[np.float32], coeffs: F64, colour: F64,
     rgb = np.empty((3, m))
     for q in range(m):
         for c in range(3):
-            rgb[c, q] = min(max(colour[c, q], 0.0), 255.0) / 255.0
+            rgb[c, q] = colour[c, q] / 255.0
     lum = np.empty(m)
     err = np.empty(m)
     for mm in range(held.shape[0]):
