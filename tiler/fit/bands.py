@@ -53,6 +53,12 @@ def ptm_rgb_band(band: Band, pinv255: npt.NDArray[np.float32]) -> Out:
     return {"coeffs": _project(pinv255, band)}
 
 
+def luminance(band: npt.NDArray[np.floating]) -> npt.NDArray[np.float32]:
+    """``Y`` of every sample of ``band (…, 3)`` in float32 (:data:`LUMINANCE_WEIGHTS`)."""
+    out: npt.NDArray[np.float32] = band @ np.asarray(LUMINANCE_WEIGHTS, np.float32)
+    return out
+
+
 def ptm_lrgb_band(band: npt.NDArray[np.generic], pinv: npt.NDArray[np.float32], *,
                   compiled: bool = True, div: float = 1.0) -> Out:
     """LRGB PTM (ptmfit): ``coeffs (b, W, 6)`` 0–255 units of the normalised luminance and
@@ -64,7 +70,7 @@ def ptm_lrgb_band(band: npt.NDArray[np.generic], pinv: npt.NDArray[np.float32], 
         return {"coeffs": coeffs32, "rgb": rgb8}
     band = np.asarray(band, np.float32) / np.float32(div)
     n, b, w, _ = band.shape
-    lum = band @ np.asarray(LUMINANCE_WEIGHTS, np.float32)  # (N, b, W)
+    lum = luminance(band)  # (N, b, W)
     peak = lum.max(axis=0)
     safe = np.where(peak > 1e-6, peak, np.float32(1.0))
     lum_n = np.where(peak > 1e-6, lum / safe, np.float32(0.0))
@@ -90,7 +96,7 @@ def normals_band(band: Band, lights: Lights, *, rank_window: tuple[float, float]
     0 = the rank window alone, the default for values as stored).
     """
     n, b, w, _ = band.shape
-    lum = (band @ np.asarray(LUMINANCE_WEIGHTS, np.float32)).reshape(n, -1)  # float32
+    lum = luminance(band).reshape(n, -1)
     nrm, albedo = solve_normals_band(lum, band.reshape(n, -1, 3), lights.astype(np.float64),
                                      rank_window=rank_window, shadow=shadow,
                                      iterations=iterations)
@@ -103,7 +109,7 @@ def normals_band_held_out(band: Band, lights: Lights, train: npt.NDArray[np.intp
     squared errors on the ``held`` lights of the same fit of the ``train`` lights
     (:mod:`.normals_held_out_kernel`); at most ``MAX_LIGHTS`` lights."""
     n, b, w, _ = band.shape
-    lum = (band @ np.asarray(LUMINANCE_WEIGHTS, np.float32)).reshape(n, -1)  # float32
+    lum = luminance(band).reshape(n, -1)
     nrm, albedo, sse = rank_window_normals_held_out(
         lum, band.reshape(n, -1, 3), lights.astype(np.float64), rank_bounds(RANK_WINDOW, n),
         SHADOW_FRACTION, train, held, rank_bounds(RANK_WINDOW, len(train)))

@@ -32,7 +32,7 @@ from lanterna.tiler.inputs.raw import is_raw, raw_to_tiff
 from lanterna.tiler.inputs.stack import StackReader, to_tiled_tiff
 from lanterna.tiler.progress import Progress
 
-from .bands import LUMINANCE_WEIGHTS
+from .bands import luminance
 from .cluster import DaskRunner
 from .engine import auto_band_rows, fit_stream
 from .models import HOLDOUT_EVERY, model_table
@@ -78,9 +78,8 @@ class FusionStack:
     def __getitem__(self, key: Any) -> npt.NDArray[np.float32]:
         if not (isinstance(key, tuple) and len(key) == 2 and key[0] == slice(None)):
             raise TypeError(f"FusionStack supports [:, y0:y1] only, not {key!r}")
-        weights = np.asarray(LUMINANCE_WEIGHTS, np.float32)
         out: npt.NDArray[np.float32] = np.stack(
-            [np.asarray(band[key], np.float32) @ weights for band in self.bands], axis=-1)
+            [luminance(np.asarray(band[key], np.float32)) for band in self.bands], axis=-1)
         return out
 
 
