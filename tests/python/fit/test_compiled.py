@@ -13,7 +13,7 @@ from llvmlite import binding as llvm
 from lanterna.tiler.fit import compiled
 from lanterna.tiler.fit.normals import solve_normals_band
 from lanterna.tiler.fit.ward import fit_ward
-from tests.python.fit.test_engine_kernels import N, _scene
+from tests.python.fixtures.glossy import N, glossy_scene
 
 REPO = Path(__file__).resolve().parents[3]
 
@@ -22,8 +22,8 @@ import sys
 import numpy as np
 from lanterna.tiler.fit.normals import solve_normals_band
 from lanterna.tiler.fit.ward import fit_ward
-from tests.python.fit.test_engine_kernels import N, _scene
-img, lights, normals = _scene()
+from tests.python.fixtures.glossy import N, glossy_scene
+img, lights, normals = glossy_scene()
 lum = (img @ np.array([0.2125, 0.7154, 0.0721], np.float32)).reshape(N, -1)
 nrm, alb = solve_normals_band(lum, img.reshape(N, -1, 3), lights, iterations=0)
 kd, ks, al = fit_ward(img, lights, normals, band_rows=7)
@@ -40,7 +40,7 @@ def test_wide_vectors_only_on_avx512() -> None:
 def test_the_vector_width_changes_no_result(tmp_path: Path) -> None:
     """The normals and Ward kernels built for LLVM's default (256-bit) vectors, in a fresh
     process and cache, give the bits this process's build gives."""
-    img, lights, normals = _scene()
+    img, lights, normals = glossy_scene()
     lum = (img @ np.array([0.2125, 0.7154, 0.0721], np.float32)).reshape(N, -1)
     here = [*solve_normals_band(lum, img.reshape(N, -1, 3), lights, iterations=0),
             *fit_ward(img, lights, normals, band_rows=7)]

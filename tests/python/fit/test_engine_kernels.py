@@ -8,7 +8,6 @@ import math
 from pathlib import Path
 
 import numpy as np
-import numpy.typing as npt
 import pytest
 
 from lanterna.tiler.fit import sinks
@@ -20,34 +19,11 @@ from lanterna.tiler.fit.normals import solve_normals_band
 from lanterna.tiler.fit.ptm import ptm_design_matrix, ptm_pinv
 from lanterna.tiler.fit.ward import fit_ward
 from lanterna.tiler.formats.ptm_model import ptm_weights
-from tests.python.fixtures.photos import spiral_lights
-
-F64 = npt.NDArray[np.float64]
-N, H, W = 36, 20, 28
-
-
-def _scene(seed: int = 5) -> tuple[npt.NDArray[np.float32], F64, F64]:
-    """A glossy bumpy object with noise, shadows, saturation, black pixels and tied samples."""
-    rng = np.random.default_rng(seed)
-    lights = spiral_lights(N, (12.0, 80.0))
-    y, x = np.mgrid[0:H, 0:W].astype(np.float64)
-    g = np.stack([0.6 * np.sin(x / 3.0), 0.5 * np.cos(y / 4.0), np.ones_like(x)], axis=-1)
-    normals = g / np.linalg.norm(g, axis=-1, keepdims=True)
-    kd = rng.uniform(0.1, 0.7, (H, W, 3))
-    ks = rng.uniform(0.0, 0.3, (H, W, 1)) * rng.uniform(0.6, 1.0, (H, W, 3))
-    half = lights + np.array([0.0, 0.0, 1.0])
-    half /= np.linalg.norm(half, axis=1, keepdims=True)
-    cosi = np.maximum(np.einsum("nc,hwc->nhw", lights, normals), 0.0)
-    nh = np.maximum(np.einsum("nc,hwc->nhw", half, normals), 1e-4)
-    spec = np.exp(-(1 - nh**2) / nh**2 / 0.2**2)
-    img = kd * cosi[..., None] + ks * spec[..., None] + rng.normal(0, 0.01, (N, H, W, 3))
-    img[:, :, :3] = np.round(img[:, :, :3] * 6) / 6  # ties in the rank selection
-    img[:, 0, 0] = 0.0  # a black pixel
-    return np.clip(img, 0.0, 1.0).astype(np.float32), lights, normals
+from tests.python.fixtures.glossy import F64, H, N, W, glossy_scene
 
 
 def test_compiled_normals_equal_the_numpy_rank_window() -> None:
-    img, lights, _ = _scene()
+    img, lights, _ = glossy_scene()
     lum = (img @ np.array([0.2125, 0.7154, 0.0721], np.float32)).reshape(N, -1)
     colour = img.reshape(N, -1, 3)
     for window, shadow in (((0.25, 0.9), 0.05), ((0.0, 1.0), 0.0), ((0.5, 0.6), 0.3)):
@@ -61,7 +37,7 @@ def test_compiled_normals_equal_the_numpy_rank_window() -> None:
 
 
 def test_compiled_ward_equals_the_numpy_solve() -> None:
-    img, lights, normals = _scene()
+    img, lights, normals = glossy_scene()
     ref = fit_ward(img, lights, normals, band_rows=7, compiled=False)
     out = fit_ward(img, lights, normals, band_rows=7)
     assert np.abs(ref[0] - out[0]).max() <= 1e-5  # kd
@@ -75,7 +51,7 @@ def test_compiled_ward_equals_the_numpy_solve() -> None:
 def test_compiled_ward_does_not_depend_on_how_pixels_are_grouped() -> None:
     """The kernel solves its pixels in lanes of a fixed count: any band height (so any number
     of pixels, full and partial groups) gives the same bits."""
-    img, lights, normals = _scene(seed=9)
+    img, lights, normals = glossy_scene(seed=9)
     whole = fit_ward(img, lights, normals, band_rows=H)
     for rows in (1, 3, 7):
         for a, b in zip(whole, fit_ward(img, lights, normals, band_rows=rows), strict=True):
@@ -86,7 +62,7 @@ def test_compiled_ward_does_not_depend_on_how_pixels_are_grouped() -> None:
 @pytest.mark.parametrize("key", ["ptm", "hsh"])
 def test_fused_leave_one_out_equals_a_least_squares_refit(tmp_path: Path, key: str) -> None:
     """PSNR of every held-out light from an independent float64 fit on the training lights."""
-    img, lights, _ = _scene(8)
+    img, lights, _ = glossy_scene(8)
     every = 7
     report = fit_stream(img, lights, [key], tmp_path, holdout_every=every, layers=False,
                         band_rows=6).quality[key]
@@ -106,7 +82,7 @@ def test_fused_leave_one_out_equals_a_least_squares_refit(tmp_path: Path, key: s
 
 
 def test_compiled_lrgb_equals_the_numpy_band_fit() -> None:
-    img, lights, _ = _scene()
+    img, lights, _ = glossy_scene()
     pinv = ptm_pinv(ptm_design_matrix(lights)).astype(np.float32)
     ref = ptm_lrgb_band(img, pinv, compiled=False)
     out = ptm_lrgb_band(img, pinv)
@@ -121,7 +97,7 @@ def test_spill_on_disk_equals_spill_in_memory(tmp_path: Path,
                                               monkeypatch: pytest.MonkeyPatch) -> None:
     """PTM/HSH coefficients kept in memory (small fits) or spilled to disk (past the budget)
     give the same planes, and the scratch file is gone at the end."""
-    img, lights, _ = _scene(3)
+    img, lights, _ = glossy_scene(3)
     keys = ["ptm", "ptm-lrgb", "hsh"]
     (tmp_path / "memory").mkdir()
     (tmp_path / "disk").mkdir()
@@ -138,7 +114,7 @@ def test_spill_on_disk_equals_spill_in_memory(tmp_path: Path,
 def test_compiled_lrgb_leave_one_out_equals_refit_and_predict(tmp_path: Path) -> None:
     """The LRGB report fitted and predicted per pixel from the band equals the numpy band fit
     on a copy of the training images followed by the PTM prediction."""
-    img, lights, _ = _scene(9)
+    img, lights, _ = glossy_scene(9)
     every = 5
     report = fit_stream(img, lights, ["ptm-lrgb"], tmp_path, holdout_every=every,
                         layers=False, band_rows=7).quality["ptm-lrgb"]
@@ -158,7 +134,7 @@ def test_lrgb_pass_reads_8_and_16_bit_samples_as_their_floats() -> None:
     """The table of 8-/16-bit values gives the bits of the division; the layer and the report
     of one pass are those of a pass for each."""
     rng = np.random.default_rng(4)
-    _, lights, _ = _scene()
+    _, lights, _ = glossy_scene()
     held = np.arange(0, N, 7)
     train = np.setdiff1d(np.arange(N), held)
     pinv = ptm_pinv(ptm_design_matrix(lights)).astype(np.float32)

@@ -11,12 +11,12 @@ from lanterna.tiler.fit import engine
 from lanterna.tiler.fit.bands import normals_band, normals_band_held_out, predict_normals_band
 from lanterna.tiler.fit.engine import fit_stream
 from lanterna.tiler.fit.normals_held_out_kernel import rank_window_normals_held_out
-from tests.python.fit.test_engine_kernels import N, _scene
+from tests.python.fixtures.glossy import N, glossy_scene
 
 
 @pytest.mark.parametrize("held", [np.arange(0, N, 10), np.array([0, 1, N - 1]), np.array([7])])
 def test_fused_pass_is_the_fit_and_a_refit_of_the_training_lights(held: np.ndarray) -> None:
-    img, lights, _ = _scene()  # ties, shadows, saturation and a black pixel
+    img, lights, _ = glossy_scene()  # ties, shadows, saturation and a black pixel
     train = np.setdiff1d(np.arange(N), held)
     out, sse = normals_band_held_out(img, lights, train, held)
     ref = normals_band(img, lights)
@@ -40,7 +40,7 @@ def test_more_lights_than_the_pass_takes_is_refused() -> None:
 
 def test_the_report_is_the_one_of_the_separate_refit(tmp_path: Path,
                                                      monkeypatch: pytest.MonkeyPatch) -> None:
-    img, lights, _ = _scene(seed=2)
+    img, lights, _ = glossy_scene(seed=2)
     (tmp_path / "a").mkdir()
     (tmp_path / "b").mkdir()
     fused = fit_stream(img, lights, ["normals"], tmp_path / "a", holdout_every=10, band_rows=6)
