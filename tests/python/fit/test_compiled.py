@@ -8,9 +8,11 @@ import sys
 from pathlib import Path
 
 import numpy as np
+import numpy.typing as npt
 from llvmlite import binding as llvm
 
 from lanterna.tiler.fit import compiled
+from lanterna.tiler.fit.bands import luminance
 from lanterna.tiler.fit.normals import solve_normals_band
 from lanterna.tiler.fit.ward import fit_ward
 from tests.python.fixtures.glossy import N, glossy_scene
@@ -20,15 +22,17 @@ REPO = Path(__file__).resolve().parents[3]
 _FIT = """
 import sys
 import numpy as np
-from lanterna.tiler.fit.normals import solve_normals_band
-from lanterna.tiler.fit.ward import fit_ward
-from tests.python.fixtures.glossy import N, glossy_scene
-img, lights, normals = glossy_scene()
-lum = (img @ np.array([0.2125, 0.7154, 0.0721], np.float32)).reshape(N, -1)
-nrm, alb = solve_normals_band(lum, img.reshape(N, -1, 3), lights, iterations=0)
-kd, ks, al = fit_ward(img, lights, normals, band_rows=7)
-np.savez(sys.argv[1], nrm=nrm, alb=alb, kd=kd, ks=ks, al=al)
+from tests.python.fit.test_compiled import kernel_outputs
+np.savez(sys.argv[1], *kernel_outputs())
 """
+
+
+def kernel_outputs() -> list[npt.NDArray[np.generic]]:
+    """Normals, albedo, kd, ks and α of the glossy scene from the normals and Ward kernels."""
+    img, lights, normals = glossy_scene()
+    lum = luminance(img).reshape(N, -1)
+    return [*solve_normals_band(lum, img.reshape(N, -1, 3), lights, iterations=0),
+            *fit_ward(img, lights, normals, band_rows=7)]
 
 
 def test_wide_vectors_only_on_avx512() -> None:
@@ -40,16 +44,13 @@ def test_wide_vectors_only_on_avx512() -> None:
 def test_the_vector_width_changes_no_result(tmp_path: Path) -> None:
     """The normals and Ward kernels built for LLVM's default (256-bit) vectors, in a fresh
     process and cache, give the bits this process's build gives."""
-    img, lights, normals = glossy_scene()
-    lum = (img @ np.array([0.2125, 0.7154, 0.0721], np.float32)).reshape(N, -1)
-    here = [*solve_normals_band(lum, img.reshape(N, -1, 3), lights, iterations=0),
-            *fit_ward(img, lights, normals, band_rows=7)]
+    here = kernel_outputs()
     env = {**os.environ, "NUMBA_CPU_FEATURES": llvm.get_host_cpu_features().flatten(),
            "NUMBA_CACHE_DIR": str(tmp_path / "cache"), "PYTHONPATH": str(REPO)}
     out = tmp_path / "narrow.npz"
     subprocess.run([sys.executable, "-c", _FIT, str(out)], check=True, env=env, cwd=REPO)
     with np.load(out) as narrow:
-        there = [narrow[k] for k in ("nrm", "alb", "kd", "ks", "al")]
+        there = [narrow[f"arr_{i}"] for i in range(len(here))]
     for a, b in zip(here, there, strict=True):
         assert a.dtype == b.dtype and np.array_equal(a, b)
     assert here[3].max() > 0.05  # the Ward fit found highlights
