@@ -157,6 +157,7 @@ def _sums(samples: npt.NDArray[np.float64], nearest: npt.NDArray[np.float64], qa
         for q in range(lanes):
             x = samples[1, i, q] * qa
             sums[5, q] += 1.0 if x <= lobe_width else 0.0
+            # both sides of the select run: min() keeps exp_neg's argument in its range
             bw = samples[2, i, q] * exp_neg(min(x, _SKIP)) * inv4 if x <= _SKIP else 0.0
             sums[0, q] += samples[0, i, q] * bw
             sums[1, q] += bw * bw
