@@ -2,15 +2,18 @@
 
 numpy evaluates the Ward term of every sample of every pixel at every α of the grid as whole
 ``(N, b, W)`` arrays (≈ 10 passes over memory per α).  Compiled, the pixels are solved
-:data:`_LANES` side by side, one parallel task per group: each pixel's samples are gathered once
-(cosi, tan²θh, √(cosi/cosr), colour; an excluded sample kept as one that adds exactly 0), then
-per α one loop over the lanes, branch-free and with :func:`~.exp_kernel.exp_neg` instead of
-libm's ``exp``, so it vectorises, sums each pixel's samples in light order; and each pixel's
-constrained 2×2 solve at that α keeps the best α so far.  A sample whose lobe value is below
-e⁻⁵⁰ of the peak adds 0 (as skipped: it changes no float64 sum).  The steps and constants are
-:func:`~lanterna.tiler.fit.ward_solve.solve_ward_band`'s (the reference, checked in
-tests/python/fit/test_engine_kernels.py); sums run in another order, so a pixel whose best α is
-a near tie may pick the neighbouring grid value.
+:data:`_LANES` side by side, one parallel task per group, in flat ``[quantity, lane]`` arrays
+with a fixed lane count, so every loop over the lanes is branch-free and vectorises: each pixel's
+samples are gathered once (cosi, tan²θh, √(cosi/cosr), colour; an excluded sample, a padding lane
+or light, kept as one that adds exactly 0); then per α the lobe of every sample
+(:func:`~.exp_kernel.exp_neg` instead of libm's ``exp``, or, where the grid holds the α with
+half the 1/α² three steps before, the square of that lobe: exp(−2x) = exp(−x)²), the sums of
+each pixel's samples in light order (:data:`_GROUP` lights per pass, so the sums stay in
+registers), and every pixel's constrained 2×2 solve, keeping the best α so far.  A sample whose
+lobe value is below e⁻⁵⁰ of the peak adds 0 (as skipped: it changes no float64 sum).  The steps
+and constants are :func:`~lanterna.tiler.fit.ward_solve.solve_ward_band`'s (the reference,
+checked in tests/python/fit/test_engine_kernels.py); sums run in another order, so a pixel
+whose best α is a near tie may pick the neighbouring grid value.
 """
 
 from __future__ import annotations
@@ -28,76 +31,50 @@ from .exp_kernel import exp_neg
 _SQRT3 = 1.0 / math.sqrt(3.0)
 _SKIP = 50.0  # exp(-50) ≈ 2e-22: the sample adds nothing to a float64 sum
 _LANES = 32  # pixels solved side by side: one parallel task, one vectorised loop
+_CHAIN = 3  # a lobe is the square of the one this many α before, where the grid allows
+_GROUP = 4  # lights summed per pass over the lanes
 _STATS = 12  # Σaa, Σay (r, g, b), Σyy, 1/Σaa, Lambert-only kd (r, g, b), its chroma
-
-
-@numba.njit(cache=True, nogil=True)
-def _project(k0: float, k1: float, k2: float, c0: float, c1: float, c2: float,
-             cos_max: float) -> tuple[float, float, float]:
-    """:func:`~.ward_solve.constrain_specular` of one ks colour (chroma unit, ≥ 0)."""
-    c = (c0 + c1 + c2) * _SQRT3
-    xg = (k0 + k1 + k2) * _SQRT3
-    xc = k0 * c0 + k1 * c1 + k2 * c2
-    span = 1.0 - c * c
-    u = v = 0.0
-    inside = False
-    if span > 1e-9:
-        u = (xg - c * xc) / span
-        v = (xc - c * xg) / span
-        inside = u >= 0 and v >= 0
-    if not inside:
-        pg = max(xg, 0.0)
-        pc = max(xc, 0.0) if span > 1e-9 else 0.0
-        if pc > pg:
-            u, v = 0.0, pc
-        else:
-            u, v = pg, 0.0
-    p0 = u * _SQRT3 + v * c0
-    p1 = u * _SQRT3 + v * c1
-    p2 = u * _SQRT3 + v * c2
-    f0, f1, f2 = max(k0, 0.0), max(k1, 0.0), max(k2, 0.0)
-    dot = f0 * p0 + f1 * p1 + f2 * p2
-    nf = math.sqrt(f0 * f0 + f1 * f1 + f2 * f2)
-    nc = math.sqrt(p0 * p0 + p1 * p1 + p2 * p2)
-    if nc > 0 and dot >= cos_max * nf * nc:
-        return f0, f1, f2
-    return p0, p1, p2
 
 
 @numba.njit(cache=True, parallel=True, nogil=True)
 def _ward(raw: npt.NDArray[np.float32], nrm: npt.NDArray[np.float64],
           lights: npt.NDArray[np.float64], half: npt.NDArray[np.float64],
-          grid: npt.NDArray[np.float64], min_cosi: float, saturated: float, cos_max: float,
+          grid: npt.NDArray[np.float64], qa: npt.NDArray[np.float64],
+          twice: npt.NDArray[np.bool_], min_cosi: float, saturated: float, cos_max: float,
           min_lobe: int, lobe_width: float, kd_out: npt.NDArray[np.float32],
           ks_out: npt.NDArray[np.float32], al_out: npt.NDArray[np.float32]) -> None:
     n, p, nk = raw.shape[0], raw.shape[1], grid.shape[0]
-    qa = 1.0 / (grid * grid)
-    inv4 = 1.0 / (4.0 * (grid * grid))
+    ng = -(-n // _GROUP) * _GROUP  # lights padded to whole groups
+    inv4 = qa * 0.25
     for block in numba.prange((p + _LANES - 1) // _LANES):
         q0 = block * _LANES
         lanes = min(p, q0 + _LANES) - q0
-        samples = np.empty((6, n, lanes))
-        stats = np.empty((_STATS, lanes))
-        sums = np.empty((6, lanes))
-        best = np.empty((8, lanes))  # SSE, kd (r, g, b), ks (r, g, b), α of the best α so far
-        best[0] = np.inf
-        best[1:7] = 0.0
-        best[7] = grid[-1]
+        samples = np.zeros(ng * 6 * _LANES)  # [light, quantity, lane], padded ones add 0
+        stats = np.zeros(_STATS * _LANES)
+        sums = np.empty(6 * _LANES)
+        best = np.zeros(8 * _LANES)  # SSE, kd (r, g, b), ks (r, g, b), α of the best α so far
+        best[:_LANES] = np.inf
+        best[7 * _LANES:] = grid[-1]
         for q in range(lanes):
             _samples(raw, q0 + q, nrm[q0 + q], lights, half, min_cosi, saturated, samples,
                      stats, q)
-        nearest = np.empty(n)  # per light, the smallest tan²θh of the lanes
-        for i in range(n):
-            nearest[i] = samples[1, i].min()
+        nearest = np.empty(ng)  # per light, the smallest tan²θh of the lanes
+        for i in range(ng):
+            row = samples[(i * 6 + 1) * _LANES:(i * 6 + 2) * _LANES]
+            row[lanes:] = np.inf
+            if i >= n:
+                row[:] = np.inf
+            nearest[i] = row.min()
+        lobes = np.zeros(_CHAIN * ng * _LANES)
         for k in range(nk):
-            _sums(samples, nearest, qa[k], inv4[k], lobe_width, sums)
-            for q in range(lanes):
-                _try_alpha(stats, sums, q, grid[k], cos_max, min_lobe, best)
+            _sums(samples, nearest, qa[k], inv4[k], lobe_width, sums, lobes,
+                  k % _CHAIN, twice[k])
+            _solve(stats, sums, grid[k], cos_max, min_lobe, best)
         for q in range(lanes):
             for c in range(3):
-                kd_out[q0 + q, c] = best[1 + c, q]
-                ks_out[q0 + q, c] = best[4 + c, q]
-            al_out[q0 + q] = best[7, q]
+                kd_out[q0 + q, c] = best[(1 + c) * _LANES + q]
+                ks_out[q0 + q, c] = best[(4 + c) * _LANES + q]
+            al_out[q0 + q] = best[7 * _LANES + q]
 
 
 @numba.njit(cache=True, nogil=True)
@@ -115,17 +92,20 @@ def _samples(raw: npt.NDArray[np.float32], px: int, nrm: npt.NDArray[np.float64]
     for i in range(n):
         cosi = max(lights[i, 0] * nx + lights[i, 1] * ny + lights[i, 2] * nz, 0.0)
         r, g, b = float(raw[i, px, 0]), float(raw[i, px, 1]), float(raw[i, px, 2])
+        at = i * 6 * _LANES + q
         if cosi < min_cosi or max(r, max(g, b)) >= saturated:
-            samples[0, i, q] = 0.0
-            samples[1, i, q] = np.inf
+            samples[at] = 0.0
+            samples[at + _LANES] = np.inf
             for c in range(2, 6):
-                samples[c, i, q] = 0.0
+                samples[at + c * _LANES] = 0.0
             continue
         nh = max(half[i, 0] * nx + half[i, 1] * ny + half[i, 2] * nz, 1e-4)
-        samples[0, i, q] = cosi
-        samples[1, i, q] = (1.0 - nh * nh) / (nh * nh)
-        samples[2, i, q] = math.sqrt(cosi / cosr)
-        samples[3, i, q], samples[4, i, q], samples[5, i, q] = r, g, b
+        samples[at] = cosi
+        samples[at + _LANES] = (1.0 - nh * nh) / (nh * nh)
+        samples[at + 2 * _LANES] = math.sqrt(cosi / cosr)
+        samples[at + 3 * _LANES] = r
+        samples[at + 4 * _LANES] = g
+        samples[at + 5 * _LANES] = b
         saa += cosi * cosi
         say0 += cosi * r
         say1 += cosi * g
@@ -139,67 +119,120 @@ def _samples(raw: npt.NDArray[np.float32], px: int, nrm: npt.NDArray[np.float64]
     else:
         c0 = c1 = c2 = _SQRT3
     for c, v in enumerate((saa, say0, say1, say2, yy, inv_saa, kl0, kl1, kl2, c0, c1, c2)):
-        stats[c, q] = v
+        stats[c * _LANES + q] = v
 
 
 @numba.njit(cache=True, nogil=True)
 def _sums(samples: npt.NDArray[np.float64], nearest: npt.NDArray[np.float64], qa: float,
-          inv4: float, lobe_width: float, sums: npt.NDArray[np.float64]) -> None:
+          inv4: float, lobe_width: float, sums: npt.NDArray[np.float64],
+          lobe: npt.NDArray[np.float64], s: int, twice: bool) -> None:
     """Per lane at one α: Σab, Σbb, Σby (r, g, b) over the samples in light order, and the
-    number of samples inside the lobe.  Branch-free over the lanes, so the loop vectorises
-    (a sample with x > :data:`_SKIP` adds an exact 0, as if skipped); a light whose smallest
-    tan²θh over the lanes (``nearest``) puts every lane past :data:`_SKIP` is skipped whole."""
+    number of samples inside the lobe.  The lobe values go to slot ``s`` of ``lobe``: with
+    ``twice`` (this α's 1/α² is twice that of the α whose lobes the slot holds) they are those
+    squared, else :func:`~.exp_kernel.exp_neg` of x = tan²θh/α².  Branch-free over the lanes,
+    so the loops vectorise (a sample with x > :data:`_SKIP` adds an exact 0, as if skipped); a
+    group of lights whose smallest tan²θh over the lanes (``nearest``) puts every lane past
+    :data:`_SKIP` is skipped whole (then it is past it at every later α of its chain too)."""
     sums[:] = 0.0
-    lanes = sums.shape[1]
-    for i in range(samples.shape[1]):
-        if nearest[i] * qa > _SKIP:
+    L = _LANES
+    n = nearest.shape[0]  # a multiple of _GROUP (padded with lights that add 0)
+    for i in range(0, n, _GROUP):
+        far = True
+        for j in range(_GROUP):
+            far &= nearest[i + j] * qa > _SKIP
+        if far:
             continue
-        for q in range(lanes):
-            x = samples[1, i, q] * qa
-            sums[5, q] += 1.0 if x <= lobe_width else 0.0
-            # both sides of the select run: min() keeps exp_neg's argument in its range
-            bw = samples[2, i, q] * exp_neg(min(x, _SKIP)) * inv4 if x <= _SKIP else 0.0
-            sums[0, q] += samples[0, i, q] * bw
-            sums[1, q] += bw * bw
-            sums[2, q] += bw * samples[3, i, q]
-            sums[3, q] += bw * samples[4, i, q]
-            sums[4, q] += bw * samples[5, i, q]
+        sv = samples[i * 6 * L:(i + _GROUP) * 6 * L]
+        ev = lobe[(s * n + i) * L:(s * n + i + _GROUP) * L]
+        if twice:  # exp(−2x) = exp(−x)²: the lobe at this α from the one 3 α before
+            for q in range(L):
+                for j in range(_GROUP):
+                    x = sv[(6 * j + 1) * L + q] * qa
+                    ev[j * L + q] = ev[j * L + q] * ev[j * L + q] if x <= _SKIP else 0.0
+        else:
+            for q in range(L):
+                for j in range(_GROUP):
+                    x = sv[(6 * j + 1) * L + q] * qa
+                    ev[j * L + q] = exp_neg(min(x, _SKIP)) if x <= _SKIP else 0.0
+        for q in range(L):
+            ab, bb, br, bg, bl, inside = sums[q], sums[L + q], sums[2 * L + q], \
+                sums[3 * L + q], sums[4 * L + q], sums[5 * L + q]
+            for j in range(_GROUP):  # in light order: the same sums as one light at a time
+                o = 6 * j * L + q
+                inside += 1.0 if sv[o + L] * qa <= lobe_width else 0.0
+                bw = sv[o + 2 * L] * ev[j * L + q] * inv4
+                ab += sv[o] * bw
+                bb += bw * bw
+                br += bw * sv[o + 3 * L]
+                bg += bw * sv[o + 4 * L]
+                bl += bw * sv[o + 5 * L]
+            sums[q], sums[L + q], sums[2 * L + q] = ab, bb, br
+            sums[3 * L + q], sums[4 * L + q], sums[5 * L + q] = bg, bl, inside
 
 
-@numba.njit(cache=True, nogil=True, inline="always")
-def _try_alpha(st: npt.NDArray[np.float64], sm: npt.NDArray[np.float64], q: int, alpha: float,
-               cos_max: float, min_lobe: int, best: npt.NDArray[np.float64]) -> None:
-    """Lane ``q``'s constrained solve at ``alpha`` from its ``stats`` and ``sums``; kept in
-    ``best`` if its SSE is the smallest so far."""
-    saa, say0, say1, say2, yy, inv_saa = st[0, q], st[1, q], st[2, q], st[3, q], st[4, q], st[5, q]
-    sab, sbb, sby0, sby1, sby2 = sm[0, q], sm[1, q], sm[2, q], sm[3, q], sm[4, q]
-    det = saa * sbb - sab * sab
-    if det > 1e-12 * max(saa * sbb, 1e-30) and sm[5, q] >= min_lobe:
-        k0, k1, k2 = _project((saa * sby0 - sab * say0) / det, (saa * sby1 - sab * say1) / det,
-                              (saa * sby2 - sab * say2) / det, st[9, q], st[10, q], st[11, q],
-                              cos_max)
-        s0, d0 = _channel(min(k0, 1.0), say0, sby0, sab, sbb, inv_saa)
-        s1, d1 = _channel(min(k1, 1.0), say1, sby1, sab, sbb, inv_saa)
-        s2, d2 = _channel(min(k2, 1.0), say2, sby2, sab, sbb, inv_saa)
-    else:
-        s0 = s1 = s2 = 0.0
-        d0, d1, d2 = st[6, q], st[7, q], st[8, q]
-    sse = (yy - 2 * (d0 * say0 + s0 * sby0 + d1 * say1 + s1 * sby1 + d2 * say2 + s2 * sby2)
-           + (d0 * d0 + d1 * d1 + d2 * d2) * saa + 2 * (d0 * s0 + d1 * s1 + d2 * s2) * sab
-           + (s0 * s0 + s1 * s1 + s2 * s2) * sbb)
-    if sse < best[0, q]:
-        best[0, q], best[1, q], best[2, q], best[3, q] = sse, d0, d1, d2
-        best[4, q], best[5, q], best[6, q], best[7, q] = s0, s1, s2, alpha
-
-
-@numba.njit(cache=True, nogil=True, inline="always")
-def _channel(ks: float, say: float, sby: float, sab: float, sbb: float,
-             inv_saa: float) -> tuple[float, float]:
-    """``(ks, kd)`` of one channel: kd refitted for ks; kd < 0 → kd = 0 and ks alone (capped)."""
-    kd_raw = (say - sab * ks) * inv_saa
-    if kd_raw < 0:
-        return min(max(sby / max(sbb, 1e-30), 0.0), 1.0), 0.0
-    return ks, kd_raw
+@numba.njit(cache=True, nogil=True, error_model="numpy")
+def _solve(st: npt.NDArray[np.float64], sm: npt.NDArray[np.float64], alpha: float,
+           cos_max: float, min_lobe: int, best: npt.NDArray[np.float64]) -> None:
+    """Every lane's constrained solve at ``alpha`` from its ``stats`` and ``sums``, kept in
+    ``best`` where its SSE is the smallest so far: :func:`~.ward_solve.solve_ward_band`'s
+    steps, as selects (so the lane loop vectorises; the unused side of a select stays finite)."""
+    L = _LANES
+    for q in range(L):
+        saa, say0, say1, say2 = st[q], st[L + q], st[2 * L + q], st[3 * L + q]
+        yy, inv_saa = st[4 * L + q], st[5 * L + q]
+        sab, sbb, sby0, sby1, sby2 = sm[q], sm[L + q], sm[2 * L + q], sm[3 * L + q], sm[4 * L + q]
+        det = saa * sbb - sab * sab
+        ok = (det > 1e-12 * max(saa * sbb, 1e-30)) & (sm[5 * L + q] >= min_lobe)
+        inv = 1.0 / det if ok else 0.0
+        k0 = (saa * sby0 - sab * say0) * inv
+        k1 = (saa * sby1 - sab * say1) * inv
+        k2 = (saa * sby2 - sab * say2) * inv
+        # the ks colour kept within cos_max of the grey–diffuse cone, else projected onto it
+        c0, c1, c2 = st[9 * L + q], st[10 * L + q], st[11 * L + q]
+        c = (c0 + c1 + c2) * _SQRT3
+        xg = (k0 + k1 + k2) * _SQRT3
+        xc = k0 * c0 + k1 * c1 + k2 * c2
+        span = 1.0 - c * c
+        wide = span > 1e-9
+        inv_span = 1.0 / span if wide else 0.0
+        u = (xg - c * xc) * inv_span
+        v = (xc - c * xg) * inv_span
+        inside = wide & (u >= 0.0) & (v >= 0.0)
+        pg = max(xg, 0.0)
+        pc = max(xc, 0.0) if wide else 0.0
+        chroma = pc > pg
+        u = u if inside else (0.0 if chroma else pg)
+        v = v if inside else (pc if chroma else 0.0)
+        p0, p1, p2 = u * _SQRT3 + v * c0, u * _SQRT3 + v * c1, u * _SQRT3 + v * c2
+        f0, f1, f2 = max(k0, 0.0), max(k1, 0.0), max(k2, 0.0)
+        dot = f0 * p0 + f1 * p1 + f2 * p2
+        nc = math.sqrt(p0 * p0 + p1 * p1 + p2 * p2)
+        near = (nc > 0.0) & (dot >= cos_max * math.sqrt(f0 * f0 + f1 * f1 + f2 * f2) * nc)
+        s0 = min(f0 if near else p0, 1.0) if ok else 0.0
+        s1 = min(f1 if near else p1, 1.0) if ok else 0.0
+        s2 = min(f2 if near else p2, 1.0) if ok else 0.0
+        # kd refitted for ks; a channel whose kd would be negative: kd = 0, its ks alone
+        sbb_safe = max(sbb, 1e-30)
+        r0, r1, r2 = (say0 - sab * s0) * inv_saa, (say1 - sab * s1) * inv_saa, \
+            (say2 - sab * s2) * inv_saa
+        s0 = min(max(sby0 / sbb_safe, 0.0), 1.0) if ok and r0 < 0.0 else s0
+        s1 = min(max(sby1 / sbb_safe, 0.0), 1.0) if ok and r1 < 0.0 else s1
+        s2 = min(max(sby2 / sbb_safe, 0.0), 1.0) if ok and r2 < 0.0 else s2
+        d0 = (0.0 if r0 < 0.0 else r0) if ok else st[6 * L + q]
+        d1 = (0.0 if r1 < 0.0 else r1) if ok else st[7 * L + q]
+        d2 = (0.0 if r2 < 0.0 else r2) if ok else st[8 * L + q]
+        sse = (yy - 2 * (d0 * say0 + s0 * sby0 + d1 * say1 + s1 * sby1 + d2 * say2 + s2 * sby2)
+               + (d0 * d0 + d1 * d1 + d2 * d2) * saa + 2 * (d0 * s0 + d1 * s1 + d2 * s2) * sab
+               + (s0 * s0 + s1 * s1 + s2 * s2) * sbb)
+        better = sse < best[q]
+        best[q] = sse if better else best[q]
+        best[L + q] = d0 if better else best[L + q]
+        best[2 * L + q] = d1 if better else best[2 * L + q]
+        best[3 * L + q] = d2 if better else best[3 * L + q]
+        best[4 * L + q] = s0 if better else best[4 * L + q]
+        best[5 * L + q] = s1 if better else best[5 * L + q]
+        best[6 * L + q] = s2 if better else best[6 * L + q]
+        best[7 * L + q] = alpha if better else best[7 * L + q]
 
 
 def ward_band_compiled(raw: npt.NDArray[np.float32], nrm: npt.NDArray[np.floating],
@@ -207,17 +240,27 @@ def ward_band_compiled(raw: npt.NDArray[np.float32], nrm: npt.NDArray[np.floatin
                        ) -> tuple[npt.NDArray[np.float32], npt.NDArray[np.float32],
                                   npt.NDArray[np.float32]]:
     """:func:`~.ward_solve.solve_ward_band` of ``raw (N, b, W, 3)``, ``nrm (b, W, 3)``:
-    kd, ks ``(b, W, 3)`` and α ``(b, W)`` float32, with the constants read at call time."""
+    kd, ks ``(b, W, 3)`` and α ``(b, W)`` float32, with the constants read at call time.
+
+    Where the grid's 1/α² is twice the one :data:`_CHAIN` steps before (to 1e-9), the lobes are
+    squared instead of computed (and that 1/α² taken as exactly twice the other)."""
     n, b, w, _ = raw.shape
     lf = np.ascontiguousarray(lights, np.float64)
     half = lf + np.array([0.0, 0.0, 1.0])
     half /= np.maximum(np.linalg.norm(half, axis=1, keepdims=True), 1e-12)
+    grid = np.asarray(grid, np.float64)
+    qa = 1.0 / (grid * grid)
+    twice = np.zeros(len(grid), np.bool_)
+    for k in range(_CHAIN, len(grid)):
+        if abs(qa[k] - 2.0 * qa[k - _CHAIN]) <= 1e-9 * qa[k]:
+            qa[k] = 2.0 * qa[k - _CHAIN]
+            twice[k] = True
     kd = np.empty((b * w, 3), np.float32)
     ks = np.empty((b * w, 3), np.float32)
     al = np.empty(b * w, np.float32)
     _ward(np.ascontiguousarray(raw, np.float32).reshape(n, b * w, 3),
           np.ascontiguousarray(nrm, np.float64).reshape(b * w, 3), lf, half,
-          np.ascontiguousarray(grid, np.float64), ws.MIN_COSI, ws.SATURATED,
+          np.ascontiguousarray(grid, np.float64), qa, twice, ws.MIN_COSI, ws.SATURATED,
           math.cos(math.radians(ws.MAX_SPECULAR_ANGLE)), ws.MIN_LOBE_SAMPLES, ws.LOBE_WIDTH,
           kd, ks, al)
     return kd.reshape(b, w, 3), ks.reshape(b, w, 3), al.reshape(b, w)

@@ -36,10 +36,17 @@ def test_compiled_normals_equal_the_numpy_rank_window() -> None:
         assert not np.array_equal(ref[0][:, 2], np.ones(H * W))  # the fit did something
 
 
-def test_compiled_ward_equals_the_numpy_solve() -> None:
-    img, lights, normals = glossy_scene()
-    ref = fit_ward(img, lights, normals, band_rows=7, compiled=False)
-    out = fit_ward(img, lights, normals, band_rows=7)
+#: An α grid whose 1/α² doubles every third step: the kernel squares those lobes.
+DOUBLING = 0.03 * 2.0 ** ((26 - np.arange(27)) / 6.0)
+
+
+@pytest.mark.parametrize(("grid", "lights"), [(None, N), (DOUBLING, N), (DOUBLING, N - 3)])
+def test_compiled_ward_equals_the_numpy_solve(grid: F64 | None, lights: int) -> None:
+    """Also with lobes squared along the grid, and lights that fill no whole group."""
+    img, lts, normals = glossy_scene()
+    img, lts = img[:lights], lts[:lights]
+    ref = fit_ward(img, lts, normals, alphas=grid, band_rows=7, compiled=False)
+    out = fit_ward(img, lts, normals, alphas=grid, band_rows=7)
     assert np.abs(ref[0] - out[0]).max() <= 1e-5  # kd
     assert np.abs(ref[1] - out[1]).max() <= 1e-5  # ks
     glossy = ref[1].max(axis=-1) >= 1e-3
