@@ -21,6 +21,7 @@ viewer shades as they are: :func:`predict_ward` returns ``clamp01(I)``, exactly 
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 
 import numpy as np
@@ -31,22 +32,24 @@ from lanterna.tiler.inputs.stack import StackReader
 from .ward_kernel import ward_band_compiled
 from .ward_solve import MIN_COSI, SATURATED, solve_ward_band, ward_terms
 
-__all__ = ["ALPHA_STEPS", "GLOSS_LIMITS", "MIN_COSI", "SATURATED", "Ward", "alpha_grid", "fit_ward",
-           "predict_ward", "quantize_ward", "render_ward", "ward_basis"]
+__all__ = ["ALPHA_PER_OCTAVE", "GLOSS_LIMITS", "MIN_COSI", "SATURATED", "Ward", "alpha_grid",
+           "fit_ward", "predict_ward", "quantize_ward", "render_ward", "ward_basis"]
 
 #: ``glossLimits`` of the written layer and the range of the α grid.
 GLOSS_LIMITS = (0.03, 0.6)
-#: Number of α values tried (log-spaced, snapped to the 8-bit gloss levels).
-ALPHA_STEPS = 24
+#: α values tried per halving of α: 1/α² doubles every ``ALPHA_PER_OCTAVE // 2`` steps, so the
+#: compiled fit squares the lobes of the α three steps before instead of computing them.
+ALPHA_PER_OCTAVE = 6
 
 
-def alpha_grid(steps: int = ALPHA_STEPS,
-               limits: tuple[float, float] = GLOSS_LIMITS) -> npt.NDArray[np.float64]:
-    """Log-spaced α in ``limits``, snapped to the 8-bit gloss levels (so quantising is exact)."""
+def alpha_grid(limits: tuple[float, float] = GLOSS_LIMITS,
+               per_octave: int = ALPHA_PER_OCTAVE) -> npt.NDArray[np.float64]:
+    """α from the widest to the narrowest: ``lo·2^(j/per_octave)`` for j from the first at or
+    above ``hi`` down to 0 (log-spaced, ~12 % apart by default; 27 values for (0.03, 0.6)).
+    The fit stores the best as its 8-bit gloss level (:func:`~.ward_solve.snap_alpha`)."""
     lo, hi = limits
-    raw = np.geomspace(lo, hi, steps)
-    levels = np.unique(np.round((raw - lo) / (hi - lo) * 255.0))
-    grid: npt.NDArray[np.float64] = lo + levels / 255.0 * (hi - lo)
+    top = math.ceil(per_octave * math.log2(hi / lo) - 1e-9)
+    grid: npt.NDArray[np.float64] = lo * 2.0 ** (np.arange(top, -1, -1) / per_octave)
     return grid
 
 
@@ -86,7 +89,8 @@ class Ward:
 
 def fit_ward(stack: npt.NDArray[np.floating] | StackReader, lights: npt.NDArray[np.floating],
              normals: npt.NDArray[np.floating], *, alphas: npt.NDArray[np.float64] | None = None,
-             band_rows: int = 32, compiled: bool = True
+             gloss_limits: tuple[float, float] = GLOSS_LIMITS, band_rows: int = 32,
+             compiled: bool = True
              ) -> tuple[npt.NDArray[np.float32], npt.NDArray[np.float32], npt.NDArray[np.float32]]:
     """Fit Lambert + isotropic Ward per pixel with the normal fixed.
 
@@ -100,12 +104,14 @@ def fit_ward(stack: npt.NDArray[np.floating] | StackReader, lights: npt.NDArray[
     normals : ndarray, shape (H, W, 3)
         Unit normals (x right, y up, z toward the camera).
     alphas : ndarray, shape (A,), optional
-        α grid (default :func:`alpha_grid`).
+        α grid, tried in order (default :func:`alpha_grid`).
+    gloss_limits : (lo, hi)
+        The layer's ``glossLimits``: the best α is stored as the α of its 8-bit gloss level.
 
     Returns
     -------
     kd, ks : ndarray, shape (H, W, 3), float32, linear, ``kd ≥ 0``, ``ks ≥ 0``
-    alpha : ndarray, shape (H, W), float32, one of ``alphas``
+    alpha : ndarray, shape (H, W), float32, the α of a gloss level (what the layer stores)
 
     ``ks`` is capped at 1 (the stored range), with kd refitted for the capped value.
     Samples with ``n·l < MIN_COSI`` or any channel ``≥ SATURATED`` are excluded.  Per α, the
@@ -113,8 +119,10 @@ def fit_ward(stack: npt.NDArray[np.floating] | StackReader, lights: npt.NDArray[
     (``a = cosi``, ``b`` the Ward term) are solved for the three channels at once; the ks
     colour is then kept within ``MAX_SPECULAR_ANGLE`` of the grey–diffuse cone (else projected
     onto it), an α is tried only where ``MIN_LOBE_SAMPLES`` samples lie in its lobe, and a channel
-    whose kd would be negative gets ``kd = 0`` and its ks alone (:mod:`.ward_solve`).
-    Rows are processed in bands of ``band_rows``, so temporaries are ``O(N·band·W)``.
+    whose kd would be negative gets ``kd = 0`` and its ks alone (:mod:`.ward_solve`).  The
+    best α is then moved to its gloss level's α, and kd, ks solved again there where the pixel
+    has a specular term, so the maps fit the α the viewer reads.  Rows are processed in bands
+    of ``band_rows``, so temporaries are ``O(N·band·W)``.
     ``compiled`` runs the Numba kernel (:mod:`.ward_kernel`), else the numpy reference.
     """
     n, h, w, _ = stack.shape
@@ -130,9 +138,11 @@ def fit_ward(stack: npt.NDArray[np.floating] | StackReader, lights: npt.NDArray[
         b = nrm.shape[0]
         maps: tuple[npt.NDArray[np.floating], ...]
         if compiled:  # (N, b, W, 3) as float32, the kernel's input
-            maps = ward_band_compiled(np.asarray(stack[:, y0:y0 + b], np.float32), nrm, lf, grid)
+            maps = ward_band_compiled(np.asarray(stack[:, y0:y0 + b], np.float32), nrm, lf, grid,
+                                      gloss_limits)
         else:
-            maps = solve_ward_band(np.asarray(stack[:, y0:y0 + b], np.float64), nrm, lf, grid)
+            maps = solve_ward_band(np.asarray(stack[:, y0:y0 + b], np.float64), nrm, lf, grid,
+                                   gloss_limits)
         kd_out[y0:y0 + b], ks_out[y0:y0 + b], al_out[y0:y0 + b] = maps
     return kd_out, ks_out, al_out
 

@@ -41,7 +41,8 @@ def _ward(raw: npt.NDArray[np.float32], nrm: npt.NDArray[np.float64],
           lights: npt.NDArray[np.float64], half: npt.NDArray[np.float64],
           grid: npt.NDArray[np.float64], qa: npt.NDArray[np.float64],
           twice: npt.NDArray[np.bool_], min_cosi: float, saturated: float, cos_max: float,
-          min_lobe: int, lobe_width: float, kd_out: npt.NDArray[np.float32],
+          min_lobe: int, lobe_width: float, lo: float, hi: float,
+          kd_out: npt.NDArray[np.float32],
           ks_out: npt.NDArray[np.float32], al_out: npt.NDArray[np.float32]) -> None:
     n, p, nk = raw.shape[0], raw.shape[1], grid.shape[0]
     ng = -(-n // _GROUP) * _GROUP  # lights padded to whole groups
@@ -69,7 +70,17 @@ def _ward(raw: npt.NDArray[np.float32], nrm: npt.NDArray[np.float64],
         for k in range(nk):
             _sums(samples, nearest, qa[k], inv4[k], lobe_width, sums, lobes,
                   k % _CHAIN, twice[k])
-            _solve(stats, sums, grid[k], cos_max, min_lobe, best)
+            _solve(stats, sums, grid[k], cos_max, min_lobe, best, False)
+        # the best α as its gloss level's, and kd, ks solved again there where ks > 0
+        qs = np.empty(_LANES)
+        for q in range(_LANES):
+            level = min(max(np.rint((best[7 * _LANES + q] - lo) / (hi - lo) * 255.0), 0.0),
+                        255.0)
+            alpha = lo + level / 255.0 * (hi - lo)
+            best[7 * _LANES + q] = alpha
+            qs[q] = 1.0 / (alpha * alpha)
+        _sums_at(samples, qs, sums)
+        _solve(stats, sums, 0.0, cos_max, 0, best, True)
         for q in range(lanes):
             for c in range(3):
                 kd_out[q0 + q, c] = best[(1 + c) * _LANES + q]
@@ -170,12 +181,32 @@ def _sums(samples: npt.NDArray[np.float64], nearest: npt.NDArray[np.float64], qa
             sums[3 * L + q], sums[4 * L + q], sums[5 * L + q] = bg, bl, inside
 
 
+@numba.njit(cache=True, nogil=True)
+def _sums_at(samples: npt.NDArray[np.float64], qs: npt.NDArray[np.float64],
+             sums: npt.NDArray[np.float64]) -> None:
+    """:func:`_sums` at one α per lane (1/α² in ``qs``), for the solve at the stored α."""
+    sums[:] = 0.0
+    L = _LANES
+    for i in range(samples.shape[0] // (6 * L)):
+        sv = samples[i * 6 * L:(i + 1) * 6 * L]
+        for q in range(L):
+            x = sv[L + q] * qs[q]
+            e = exp_neg(min(x, _SKIP)) if x <= _SKIP else 0.0
+            bw = sv[2 * L + q] * e * (qs[q] * 0.25)
+            sums[q] += sv[q] * bw
+            sums[L + q] += bw * bw
+            sums[2 * L + q] += bw * sv[3 * L + q]
+            sums[3 * L + q] += bw * sv[4 * L + q]
+            sums[4 * L + q] += bw * sv[5 * L + q]
+
+
 @numba.njit(cache=True, nogil=True, error_model="numpy")
 def _solve(st: npt.NDArray[np.float64], sm: npt.NDArray[np.float64], alpha: float,
-           cos_max: float, min_lobe: int, best: npt.NDArray[np.float64]) -> None:
+           cos_max: float, min_lobe: int, best: npt.NDArray[np.float64], again: bool) -> None:
     """Every lane's constrained solve at ``alpha`` from its ``stats`` and ``sums``, kept in
-    ``best`` where its SSE is the smallest so far: :func:`~.ward_solve.solve_ward_band`'s
-    steps, as selects (so the lane loop vectorises; the unused side of a select stays finite)."""
+    ``best`` where its SSE is the smallest so far (``again``: where the best has ks > 0, and
+    ``alpha`` left as it is): :func:`~.ward_solve.solve_ward_band`'s steps, as selects (so the
+    lane loop vectorises; the unused side of a select stays finite)."""
     L = _LANES
     for q in range(L):
         saa, say0, say1, say2 = st[q], st[L + q], st[2 * L + q], st[3 * L + q]
@@ -224,7 +255,11 @@ def _solve(st: npt.NDArray[np.float64], sm: npt.NDArray[np.float64], alpha: floa
         sse = (yy - 2 * (d0 * say0 + s0 * sby0 + d1 * say1 + s1 * sby1 + d2 * say2 + s2 * sby2)
                + (d0 * d0 + d1 * d1 + d2 * d2) * saa + 2 * (d0 * s0 + d1 * s1 + d2 * s2) * sab
                + (s0 * s0 + s1 * s1 + s2 * s2) * sbb)
-        better = sse < best[q]
+        if again:
+            better = (best[4 * L + q] > 0.0) | (best[5 * L + q] > 0.0) | (best[6 * L + q] > 0.0)
+        else:
+            better = sse < best[q]
+            best[7 * L + q] = alpha if better else best[7 * L + q]
         best[q] = sse if better else best[q]
         best[L + q] = d0 if better else best[L + q]
         best[2 * L + q] = d1 if better else best[2 * L + q]
@@ -232,15 +267,16 @@ def _solve(st: npt.NDArray[np.float64], sm: npt.NDArray[np.float64], alpha: floa
         best[4 * L + q] = s0 if better else best[4 * L + q]
         best[5 * L + q] = s1 if better else best[5 * L + q]
         best[6 * L + q] = s2 if better else best[6 * L + q]
-        best[7 * L + q] = alpha if better else best[7 * L + q]
 
 
 def ward_band_compiled(raw: npt.NDArray[np.float32], nrm: npt.NDArray[np.floating],
-                       lights: npt.NDArray[np.float64], grid: npt.NDArray[np.float64]
+                       lights: npt.NDArray[np.float64], grid: npt.NDArray[np.float64],
+                       limits: tuple[float, float]
                        ) -> tuple[npt.NDArray[np.float32], npt.NDArray[np.float32],
                                   npt.NDArray[np.float32]]:
     """:func:`~.ward_solve.solve_ward_band` of ``raw (N, b, W, 3)``, ``nrm (b, W, 3)``:
-    kd, ks ``(b, W, 3)`` and α ``(b, W)`` float32, with the constants read at call time.
+    kd, ks ``(b, W, 3)`` and α ``(b, W)`` float32 (a gloss level's of ``limits``), with the
+    constants read at call time.
 
     Where the grid's 1/α² is twice the one :data:`_CHAIN` steps before (to 1e-9), the lobes are
     squared instead of computed (and that 1/α² taken as exactly twice the other)."""
@@ -262,5 +298,5 @@ def ward_band_compiled(raw: npt.NDArray[np.float32], nrm: npt.NDArray[np.floatin
           np.ascontiguousarray(nrm, np.float64).reshape(b * w, 3), lf, half,
           np.ascontiguousarray(grid, np.float64), qa, twice, ws.MIN_COSI, ws.SATURATED,
           math.cos(math.radians(ws.MAX_SPECULAR_ANGLE)), ws.MIN_LOBE_SAMPLES, ws.LOBE_WIDTH,
-          kd, ks, al)
+          float(limits[0]), float(limits[1]), kd, ks, al)
     return kd.reshape(b, w, 3), ks.reshape(b, w, 3), al.reshape(b, w)

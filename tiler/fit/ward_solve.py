@@ -96,11 +96,24 @@ def ward_terms(nrm: F64, lights: F64) -> tuple[F64, F64, F64]:
     return cosi, tan2, np.sqrt(cosi / cosr)
 
 
-def solve_ward_band(raw: F64, nrm: F64, lights: F64, grid: F64) -> tuple[F64, F64, F64]:
+def snap_alpha(alpha: F64, limits: tuple[float, float]) -> F64:
+    """The α of the 8-bit gloss level nearest ``alpha`` (``α = lo + level/255·(hi − lo)``, the
+    layer's ``glossLimits``; outside them, the nearer end)."""
+    lo, hi = limits
+    level = np.clip(np.round((np.asarray(alpha, np.float64) - lo) / (hi - lo) * 255.0), 0, 255)
+    out: F64 = lo + level / 255.0 * (hi - lo)
+    return out
+
+
+def solve_ward_band(raw: F64, nrm: F64, lights: F64, grid: F64,
+                    limits: tuple[float, float]) -> tuple[F64, F64, F64]:
     """Fit one band: ``raw (N, b, W, 3)``, ``nrm (b, W, 3)`` → kd, ks ``(b, W, 3)``, α ``(b, W)``.
 
-    See :func:`~lanterna.tiler.fit.ward.fit_ward` for the model and the module docstring for
-    the constraint.
+    Every α of ``grid`` is tried in order (the first of equal SSEs is kept); the best is then
+    stored as its gloss level's α (:func:`snap_alpha`), and kd, ks of a pixel with a specular
+    term are solved again at that α (a lobe test no longer applies), so the maps fit the α the
+    layer stores.  See :func:`~lanterna.tiler.fit.ward.fit_ward` for the model and the module
+    docstring for the constraint.
     """
     b, w = nrm.shape[:2]
     cosi, tan2, root = ward_terms(nrm, lights)
@@ -113,19 +126,17 @@ def solve_ward_band(raw: F64, nrm: F64, lights: F64, grid: F64) -> tuple[F64, F6
     say = np.einsum("nbw,nbwc->bwc", a, y)
     kd_l = np.maximum(say / np.maximum(saa, 1e-12)[..., None], 0.0)
     chroma = diffuse_chroma(kd_l)
-    best = np.full((b, w), np.inf)
-    kd_b = np.zeros((b, w, 3))
-    ks_b = np.zeros((b, w, 3))
-    al_b = np.full((b, w), grid[-1])
-    for alpha in grid:
-        a2 = alpha * alpha
+
+    def solve(a2: F64 | float, lobe_test: bool) -> tuple[F64, F64, F64]:
+        """kd, ks and the SSE of every pixel at α² ``a2`` (a scalar, or one per pixel)."""
         bw = g * np.exp(-tan2 / a2) / (4.0 * a2)
         sab = np.einsum("nbw,nbw->bw", a, bw)
         sbb = np.einsum("nbw,nbw->bw", bw, bw)
         sby = np.einsum("nbw,nbwc->bwc", bw, y)
         det = saa * sbb - sab * sab
         ok = det > 1e-12 * np.maximum(saa * sbb, 1e-30)
-        ok &= np.count_nonzero(valid & (tan2 <= a2 * LOBE_WIDTH), axis=0) >= MIN_LOBE_SAMPLES
+        if lobe_test:
+            ok &= np.count_nonzero(valid & (tan2 <= a2 * LOBE_WIDTH), axis=0) >= MIN_LOBE_SAMPLES
         inv = np.where(ok, 1.0 / np.where(ok, det, 1.0), 0.0)[..., None]
         ks = (saa[..., None] * sby - sab[..., None] * say) * inv
         ks = constrain_specular(ks, chroma, MAX_SPECULAR_ANGLE)
@@ -135,13 +146,23 @@ def solve_ward_band(raw: F64, nrm: F64, lights: F64, grid: F64) -> tuple[F64, F6
         # a channel whose kd would be negative: kd = 0 and its ks alone (capped)
         only = np.minimum(np.maximum(sby / np.maximum(sbb, 1e-30)[..., None], 0.0), 1.0)
         ks = np.where(ok[..., None] & (kd_raw < 0), only, ks)
-        sse = _sse(yy, say, saa, kd, ks, sab, sby, sbb)
+        return kd, ks, _sse(yy, say, saa, kd, ks, sab, sby, sbb)
+
+    best = np.full((b, w), np.inf)
+    kd_b = np.zeros((b, w, 3))
+    ks_b = np.zeros((b, w, 3))
+    al_b = np.full((b, w), grid[-1])
+    for alpha in grid:
+        kd, ks, sse = solve(alpha * alpha, True)
         better = sse < best
         best = np.where(better, sse, best)
         kd_b = np.where(better[..., None], kd, kd_b)
         ks_b = np.where(better[..., None], ks, ks_b)
         al_b = np.where(better, alpha, al_b)
-    return kd_b, ks_b, al_b
+    al_s = snap_alpha(al_b, limits)
+    kd, ks, _ = solve(al_s * al_s, False)
+    again = (ks_b.max(axis=-1) > 0)[..., None]
+    return np.where(again, kd, kd_b), np.where(again, ks, ks_b), al_s
 
 
 def _sse(yy: F64, say: F64, saa: F64, kd: F64, ks: F64, sab: F64, sby: F64, sbb: F64) -> F64:

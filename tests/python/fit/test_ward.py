@@ -54,13 +54,34 @@ def _render(obj: dict[str, npt.NDArray[np.float64]],
     return np.clip(np.array(out), 0.0, 1.0).astype(np.float32)
 
 
-def test_grid_is_log_spaced_on_gloss_levels() -> None:
+def test_grid_is_log_spaced_and_doubles_one_over_alpha_squared() -> None:
     grid = alpha_grid()
     lo, hi = GLOSS_LIMITS
-    assert 20 <= len(grid) <= 24 and grid[0] == pytest.approx(lo) and grid[-1] == pytest.approx(hi)
-    levels = (grid - lo) / (hi - lo) * 255
-    assert np.allclose(levels, np.round(levels))
-    assert np.all(np.diff(np.log(grid)) < 0.2)
+    assert grid[-1] == lo and grid[0] >= hi and grid[1] < hi  # widest first, covers the limits
+    assert np.all(np.diff(grid) < 0) and np.all(np.abs(np.diff(np.log(grid))) < 0.2)
+    # every third step halves α²: the compiled fit squares those lobes (exp(−2x) = exp(−x)²)
+    assert np.allclose(grid[3:] ** 2 * 2, grid[:-3] ** 2, rtol=1e-12, atol=0)
+
+
+@pytest.mark.parametrize("compiled", [True, False])
+def test_alpha_is_a_gloss_level_and_the_maps_are_solved_there(compiled: bool) -> None:
+    """The best α is stored as a gloss level, and kd, ks are those a fit at that one α gives."""
+    obj, lights = _object(), _lights()
+    images = _render(obj, lights)
+    kd, ks, alpha = fit_ward(images, lights, obj["normals"], compiled=compiled)
+    lo, hi = GLOSS_LIMITS
+    levels = (alpha.astype(np.float64) - lo) / (hi - lo) * 255
+    assert np.allclose(levels, np.round(levels), atol=1e-3)
+    glossy = ks.max(axis=-1) > 0
+    assert glossy.mean() > 0.5
+    values = np.unique(alpha[glossy])
+    assert len(values) > 5 and not np.isin(values, alpha_grid().astype(np.float32)).all()
+    for value in values:
+        at = glossy & (alpha == value)
+        one = fit_ward(images, lights, obj["normals"], alphas=np.array([float(value)]),
+                       compiled=compiled)
+        assert np.abs(one[0][at] - kd[at]).max() <= 1e-5
+        assert np.abs(one[1][at] - ks[at]).max() <= 1e-5
 
 
 def test_known_material_recovered_with_true_normals() -> None:

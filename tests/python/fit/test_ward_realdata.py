@@ -59,12 +59,12 @@ def test_specular_colour_is_plausible_and_loo_psnr_holds(
         free, kd_free, ks_free = _ward(tmp_path / "free", stack, lights)
     # the free fit does put implausible colours (green/blue sparkles along the silhouette) …
     assert np.count_nonzero(_off_cone_degrees(kd_free, ks_free) > PLAUSIBLE_DEGREES) > 50
-    assert ks_free.max() >= 254 / 255
-    # … the constrained one none, and no ks at the cap (the isolated white sparkles)
+    # … the constrained one none, and none of the free fit's isolated bright sparkles
+    # (measured: the free fit's brightest ks is 204/255, or the cap with a coarser α grid)
     off = _off_cone_degrees(kd, ks)
     assert off.size > 0.4 * kd[..., 0].size  # most of the object keeps a specular lobe
     assert off.max() <= PLAUSIBLE_DEGREES, np.sort(off)[-5:]
-    assert ks.max() < 250 / 255
+    assert ks.max() < 250 / 255 and ks.max() <= ks_free.max() - 50 / 255
     # and the held-out lights are predicted at least as well
     assert report["heldOut"] == free["heldOut"] and len(report["heldOut"]) == 24
     assert report["meanPsnr"] >= free["meanPsnr"], (report, free)
