@@ -28,9 +28,9 @@ def _read_rows(images: Any, y0: int, y1: int) -> npt.NDArray[np.float32]:
     return np.asarray(images[:, y0:y1], np.float32)
 
 
-def _run_step(step: Callable[[npt.NDArray[np.float32]], Any],
-              band: npt.NDArray[np.float32]) -> Any:
-    return step(band)
+def _run_step(step: Callable[[npt.NDArray[np.float32], float, int], Any],
+              band: npt.NDArray[np.float32], y0: int) -> Any:
+    return step(band, 1.0, y0)
 
 
 class DaskRunner:
@@ -64,8 +64,9 @@ class DaskRunner:
         self.in_flight = max(1, window * threads)
 
     def bands(self, images: Any, spans: Sequence[tuple[int, int]],
-              step: Callable[[npt.NDArray[np.float32]], Any]) -> Iterator[Any]:
-        """Yield ``step(images[:, y0:y1])`` for every span, in order, computed on the cluster."""
+              step: Callable[[npt.NDArray[np.float32], float, int], Any]) -> Iterator[Any]:
+        """Yield ``step(images[:, y0:y1], 1.0, y0)`` for every span, in order, computed on the
+        cluster."""
         import dask.array as da
         from dask.delayed import delayed
 
@@ -76,9 +77,9 @@ class DaskRunner:
         stack = da.concatenate(blocks, axis=1)  # one chunk per row band
         step_future = self.client.scatter(step, broadcast=True)
         pending: deque[Any] = deque()
-        for i in range(len(spans)):
+        for i, (y0, _) in enumerate(spans):
             block = stack.blocks[0, i, 0, 0]
-            pending.append(self.client.compute(delayed(_run_step)(step_future, block)))
+            pending.append(self.client.compute(delayed(_run_step)(step_future, block, y0)))
             if len(pending) >= self.in_flight:
                 yield pending.popleft().result()
         while pending:

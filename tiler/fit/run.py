@@ -34,7 +34,7 @@ from lanterna.tiler.progress import Progress
 
 from .bands import luminance
 from .cluster import DaskRunner
-from .engine import auto_band_rows, fit_stream
+from .engine import REPORT_PIXELS, auto_band_rows, fit_stream
 from .models import HOLDOUT_EVERY, model_table
 from .pca import PCA_LABELS
 from .pca_band import pca_models
@@ -187,7 +187,9 @@ def fit_sets(sets: Sequence[ImageSet], models: Sequence[str], out: Path, *,
             jobs.append((prefix, tag, FusionStack([inputs[b][0] for b in fusion]), lights,
                          "fusion of " + ", ".join(fusion), by_name[fusion[0]].lp))
         quality: dict[str, Any] = {"protocol": f"fit without every {HOLDOUT_EVERY}th light "
-                                   "(from the first), PSNR of the prediction on those, RGB 0-1",
+                                   "(from the first), PSNR of the prediction on those, RGB 0-1; "
+                                   "normals and Ward on a fixed pseudo-random sample of about "
+                                   f"{REPORT_PIXELS} pixels of larger images ('pixels')",
                                    "models": {}}
         plans = []
         for j, (prefix, tag, stack, lights, source, lp) in enumerate(jobs):
@@ -215,8 +217,10 @@ def fit_sets(sets: Sequence[ImageSet], models: Sequence[str], out: Path, *,
                 if key in result.quality:
                     q = result.quality[key]
                     quality["models"][lid] = q
+                    on = "" if q["pixels"] == stack.shape[1] * width else \
+                        f" (on a sample of {q['pixels']} pixels)"
                     report(f"{lid}: leave-one-out PSNR mean {q['meanPsnr']:.2f} dB, "
-                           f"median {q['medianPsnr']:.2f} dB over {len(q['heldOut'])} lights")
+                           f"median {q['medianPsnr']:.2f} dB over {len(q['heldOut'])} lights{on}")
                 plans.append(_plan(result.layers[key], lid, tag + model.label, source,
                                    plane_format))
         default_label = collection_name(sets[0]) if len(sets) == 1 else Path(out).name

@@ -9,6 +9,7 @@ import numpy as np
 import pytest
 
 from lanterna.errors import LanternaInputError
+from lanterna.tiler.fit import engine
 from lanterna.tiler.fit.run import fit_collection
 from tests.python.fixtures.photos import BAND, tall_lights, write_tall_stack
 from tests.python.fixtures.stored import stored_format, stored_plane
@@ -26,7 +27,10 @@ def _planes(ds: Path) -> dict[str, bytes]:
     return out
 
 
-def test_local_cluster_gives_the_local_result(tmp_path: Path) -> None:
+def test_local_cluster_gives_the_local_result(tmp_path: Path,
+                                              monkeypatch: pytest.MonkeyPatch) -> None:
+    """Also the photometric reports' pixel sample (each band's rows known on the worker)."""
+    monkeypatch.setattr(engine, "REPORT_PIXELS", 10_000)
     lights = tall_lights()
     files = write_tall_stack(tmp_path / "shots", lights)
     lp = tmp_path / "shots" / "lights.lp"
@@ -37,6 +41,7 @@ def test_local_cluster_gives_the_local_result(tmp_path: Path) -> None:
     cluster = fit_collection(tmp_path / "shots", lp, models, tmp_path / "dask", band_rows=BAND,
                              scheduler="local:2")
     assert cluster == local  # the leave-one-out report, to the last digit
+    assert 5_000 < local["models"]["ward"]["pixels"] < 15_000
     a, b = _planes(tmp_path / "local"), _planes(tmp_path / "dask")
     # PTM RGB 6, HSH9 9, normals + kd 2, Ward kd/ks/gloss 3 (its normal map is shared)
     assert len(a) == 6 + 9 + 2 + 3
