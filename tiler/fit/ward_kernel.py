@@ -9,7 +9,9 @@ or light, kept as one that adds exactly 0); then per α the lobe of every sample
 (:func:`~.exp_kernel.exp_neg` instead of libm's ``exp``, or, where the grid holds the α with
 half the 1/α² three steps before, the square of that lobe: exp(−2x) = exp(−x)²), the sums of
 each pixel's samples in light order (:data:`_GROUP` lights per pass, so the sums stay in
-registers), and every pixel's constrained 2×2 solve, keeping the best α so far.  A sample whose
+registers), and every pixel's constrained 2×2 solve, keeping the best α so far; once no pixel
+of a group has enough samples in its lobe, the narrower α are not tried (each would give the
+same Lambert fit again, never better: the results are those of the whole grid).  A sample whose
 lobe value is below e⁻⁵⁰ of the peak adds 0 (as skipped: it changes no float64 sum).  The steps
 and constants are :func:`~lanterna.tiler.fit.ward_solve.solve_ward_band`'s (the reference,
 checked in tests/python/fit/test_engine_kernels.py); sums run in another order, so a pixel
@@ -71,6 +73,8 @@ def _ward(raw: npt.NDArray[np.float32], nrm: npt.NDArray[np.float64],
             _sums(samples, nearest, qa[k], inv4[k], lobe_width, sums, lobes,
                   k % _CHAIN, twice[k])
             _solve(stats, sums, grid[k], cos_max, min_lobe, best, False)
+            if _narrower_all_fail(sums, min_lobe, qa, k):
+                break  # every lane failed the lobe test: each later α is its Lambert again
         # the best α as its gloss level's, and kd, ks solved again there where ks > 0
         qs = np.empty(_LANES)
         for q in range(_LANES):
@@ -179,6 +183,22 @@ def _sums(samples: npt.NDArray[np.float64], nearest: npt.NDArray[np.float64], qa
                 bl += bw * sv[o + 5 * L]
             sums[q], sums[L + q], sums[2 * L + q] = ab, bb, br
             sums[3 * L + q], sums[4 * L + q], sums[5 * L + q] = bg, bl, inside
+
+
+@numba.njit(cache=True, nogil=True)
+def _narrower_all_fail(sums: npt.NDArray[np.float64], min_lobe: int,
+                       qa: npt.NDArray[np.float64], k: int) -> bool:
+    """Whether no lane has ``min_lobe`` samples in the lobe at α ``k`` and every later α is
+    narrower: a lobe holds no more samples at a narrower α, so each later α fails too and
+    gives the lane its Lambert fit again, whose SSE does not depend on α (never better)."""
+    L = _LANES
+    for q in range(L):
+        if sums[5 * L + q] >= min_lobe:
+            return False
+    for j in range(k + 1, qa.shape[0]):
+        if qa[j] < qa[k]:
+            return False
+    return True
 
 
 @numba.njit(cache=True, nogil=True)
