@@ -6,9 +6,9 @@ numpy evaluates the Ward term of every sample of every pixel at every α of the 
 with a fixed lane count, so every loop over the lanes is branch-free and vectorises: each pixel's
 samples are gathered once (cosi, tan²θh, √(cosi/cosr), colour; an excluded sample, a padding lane
 or light, kept as one that adds exactly 0); then per α the lobe of every sample
-(:func:`~.exp_kernel.exp_neg` instead of libm's ``exp``, or, where the grid holds the α with
-half the 1/α² three steps before, the square of that lobe: exp(−2x) = exp(−x)²), the sums of
-each pixel's samples in light order (:data:`_GROUP` lights per pass, so the sums stay in
+(:func:`~.exp_kernel.exp_neg` instead of libm's ``exp``, or, where the grid's 1/α² is twice
+the one three steps before, the square of that lobe: exp(−2x) = exp(−x)²), the sums of each
+pixel's samples in light order (:data:`_GROUP` lights per pass, so the sums stay in
 registers), and every pixel's constrained 2×2 solve, keeping the best α so far; once no pixel
 of a group has enough samples in its lobe, the narrower α are not tried (each would give the
 same Lambert fit again, never better: the results are those of the whole grid).  A sample whose
