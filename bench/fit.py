@@ -223,6 +223,9 @@ def compare(args: argparse.Namespace) -> dict[str, Any]:
         lp = make_stack(work / "shots", args.size, args.lights, args.grain)
         held = 10 if args.lights >= 20 else 0
         sides = {"this": sys.executable, "other": args.python}
+        if args.rounds % 2:  # the first fit of a pair is the slower one on this VM
+            print("note: an odd --rounds lets one version run first more often in each case; "
+                  "use an even number", file=sys.stderr)
         runs: dict[tuple[str, str], list[dict[str, float]]] = {}
         for r in range(args.rounds):
             for key in args.models:
