@@ -4,8 +4,8 @@ One pass reads the images top to bottom in bands of rows (:class:`~lanterna.tile
 StackReader`, kept 8-bit as decoded) and solves them in cache-sized float sub-bands, each
 twice — on all lights (the layer) and without the held-out lights (the leave-one-out report,
 accumulated as squared errors on the held-out images of the same rows; the linear models predict
-them by one product, :func:`_fused_rows`) — so the images are decoded once whatever the number
-of models.
+them by one product, :func:`~.held_out.fused_rows`) — so the images are decoded once whatever
+the number of models.
 
 Memory is bounded by the band, not the image: each band's outputs go to file-backed planes or,
 for the globally quantised PTM/HSH coefficients, to a float spill quantised in a second pass
@@ -15,7 +15,6 @@ groups are those files.
 
 from __future__ import annotations
 
-import math
 from collections import deque
 from collections.abc import Callable, Iterable, Iterator, Sequence
 from concurrent.futures import ThreadPoolExecutor
@@ -27,7 +26,6 @@ import numpy as np
 import numpy.typing as npt
 from threadpoolctl import threadpool_limits
 
-from lanterna.tiler.formats.hsh_basis import hsh_weights
 from lanterna.tiler.formats.planes import PlaneLayer
 from lanterna.tiler.formats.ptm_model import ptm_weights
 from lanterna.tiler.inputs.stack import DECODE_THREADS, StackReader
@@ -35,6 +33,8 @@ from lanterna.tiler.progress import Progress
 from lanterna.tiler.render.shading import linear_to_srgb, srgb_to_linear
 
 from . import bands as fb
+from . import held_out as ho
+from .held_out import fused_rows, report, report_sample
 from .hsh import hsh_design_matrix, hsh_pinv
 from .linear_kernel import linear_band
 from .lrgb_kernel import lrgb_band_held_out_compiled
@@ -56,10 +56,6 @@ SUB_BAND_BUDGET = 4 << 20
 READ_AHEAD = 2
 #: Models the engine fits, by CLI name.
 MODEL_KEYS = ("ptm", "ptm-lrgb", "hsh", "normals", "ward")
-#: Pixels the leave-one-out twin of the photometric models (a second nonlinear fit: for Ward as
-#: costly as the layer's) is fitted on, about: a fixed pseudo-random subset of the image
-#: beyond that (:func:`report_sample`); the linear models' reports are exact at any size.
-REPORT_PIXELS = 1 << 16
 
 
 def auto_band_rows(n: int, width: int, budget: int = BAND_BUDGET) -> int:
@@ -119,10 +115,6 @@ class _Solver:
         return out
 
 
-PREDICT: dict[str, Callable[[fb.Out, npt.NDArray[np.float64]], fb.Band]] = {
-    "ptm": fb.predict_ptm_band, "ptm-lrgb": fb.predict_ptm_band, "hsh": fb.predict_hsh_band,
-    "normals": fb.predict_normals_band, "ward": fb.predict_ward_band,
-}
 
 
 #: Per band: the outputs of its parts in row order (the linear models' whole band first, then
@@ -153,7 +145,7 @@ class _Step:
     extra: Sequence[Callable[[npt.NDArray[np.generic], float],
                              tuple[fb.Out | None, npt.NDArray[np.float64]]]] = ()
     extra_keys: Sequence[str] = ()
-    #: the share of pixels the photometric models' twin is fitted on (:func:`report_sample`)
+    #: the share of pixels the photometric models' twin is fitted on (held_out.report_sample)
     report_share: float = 1.0
     #: the float sub-band buffer, made where the step runs (never pickled)
     _unit: npt.NDArray[np.float32] | None = field(default=None, repr=False, compare=False)
@@ -275,49 +267,12 @@ class _Step:
         for k in keys:
             sse[k] = np.zeros(len(self.held))
             for j, i in enumerate(self.held):
-                pred = PREDICT[k](fitted[k], self.full.lights[i])
+                pred = ho.PREDICT[k](fitted[k], self.full.lights[i])
                 if self.full.linear and k in ("normals", "ward"):
                     pred = linear_to_srgb(pred)
                 diff = pred.reshape(-1) - actual[j]
                 sse[k][j] = float(np.einsum("i,i->", diff, diff, dtype=np.float64))
         return sse
-
-
-def report_sample(y0: int, rows: int, width: int, share: float) -> npt.NDArray[np.bool_]:
-    """The pixels of rows ``y0 … y0 + rows`` (``(rows, width)`` mask) in the leave-one-out
-    twin's sample: those whose index ``i = y·width + x`` gives a SplitMix64 output (the mix of
-    ``(i + 1)·γ``) in the lowest ``share`` of its range.  Fixed by the pixel alone, so the same
-    whatever the band heights or the machine; pseudo-random, so it cannot alias with a
-    periodic pattern of the object, as a regular lattice can (measured on the 1024² grainy
-    bench stack: every 8th row and column, 1/64 of the pixels, put the Ward report 0.43 dB
-    low; this sample of 1/64, 0.01 dB)."""
-    idx = (np.arange(y0, y0 + rows, dtype=np.uint64)[:, None] * np.uint64(width)
-           + np.arange(width, dtype=np.uint64)[None, :])
-    z = (idx + np.uint64(1)) * np.uint64(0x9E3779B97F4A7C15)
-    z = (z ^ (z >> np.uint64(30))) * np.uint64(0xBF58476D1CE4E5B9)
-    z = (z ^ (z >> np.uint64(27))) * np.uint64(0x94D049BB133111EB)
-    z ^= z >> np.uint64(31)
-    mask: npt.NDArray[np.bool_] = (z >> np.uint64(11)) < np.uint64(int(share * (1 << 53)))
-    return mask
-
-
-def _fused_rows(loo: _Solver, lights: Lights, held: npt.NDArray[np.intp],
-                train: npt.NDArray[np.intp]) -> dict[str, npt.NDArray[np.float32]]:
-    """Per linear model, ``(h, N)`` = the held-out lights' basis rows × the leave-one-out
-    pseudo-inverse (zero on the held-out columns): the held-out predictions in one product."""
-    rows: dict[str, npt.NDArray[np.float32]] = {}
-    bases: dict[str, Callable[[float, float], npt.NDArray[np.floating]]] = {
-        "ptm": ptm_weights, "hsh": lambda u, v: hsh_weights(u, v, loo.terms)}
-    pinvs = {"ptm": loo.pinv.get("ptm-lrgb"), "hsh": loo.pinv.get("hsh")}
-    for k in ("ptm", "hsh"):
-        pinv = pinvs[k]
-        if k not in loo.keys or pinv is None:
-            continue
-        basis = np.stack([bases[k](float(lt[0]), float(lt[1])) for lt in lights[held]])
-        full = np.zeros((len(held), len(lights)))
-        full[:, train] = basis.astype(np.float64) @ pinv.astype(np.float64)
-        rows[k] = full.astype(np.float32)
-    return rows
 
 
 class ExtraModel(Protocol):
@@ -378,9 +333,9 @@ def fit_stream(images: Images, lights: Lights, keys: Sequence[str], scratch: Pat
     fit the stored values, which the viewer shows as they are.
     The photometric models' report (a second nonlinear fit) is fitted on a fixed pseudo-random
     share of the pixels when the image has more than ``report_pixels`` (about that many,
-    :func:`report_sample`; ``None``: :data:`REPORT_PIXELS`; 0: every pixel); each model's
-    report says how many it used (``"pixels"``).  ``layers=False`` skips the layers (the report
-    only).  ``runner`` solves the bands elsewhere
+    :func:`~.held_out.report_sample`; ``None``: :data:`~.held_out.REPORT_PIXELS`; 0: every
+    pixel); each model's report says how many it used (``"pixels"``).  ``layers=False`` skips
+    the layers (the report only).  ``runner`` solves the bands elsewhere
     (:class:`~lanterna.tiler.fit.cluster.DaskRunner`); results are consumed in order, so the
     output is the same as the local loop's.  ``progress(label, total)`` makes a progress
     reporter per stage.  ``extra`` are models with their own band step
@@ -408,10 +363,11 @@ def fit_stream(images: Images, lights: Lights, keys: Sequence[str], scratch: Pat
     sinks = Sinks(scratch, w, h)
     bar = progress("fitting " + ", ".join(every), h) if progress else None
     spans = [(y0, min(h, y0 + rows)) for y0 in range(0, h, rows)]
-    limit = REPORT_PIXELS if report_pixels is None else report_pixels
+    limit = ho.REPORT_PIXELS if report_pixels is None else report_pixels
     share = 1.0 if limit <= 0 else min(1.0, limit / max(1, h * w))
     step = _Step(full, loo, held, train, layers,
-                 _fused_rows(loo, lights, held, train) if loo is not None else {},
+                 fused_rows(loo.keys, loo.pinv, loo.terms, lights, held, train)
+                 if loo is not None else {},
                  [m.step for m in extra], [m.key for m in extra], share)
     pixels = dict.fromkeys(every, 0)
     results: Iterable[tuple[int, _StepResult]]
@@ -440,12 +396,7 @@ def fit_stream(images: Images, lights: Lights, keys: Sequence[str], scratch: Pat
     fitted = sinks.finish(keys, terms, space, progress) if layers else {}
     if layers:
         fitted.update({m.key: m.finish(progress) for m in extra})
-    quality = {}
-    for k in every if len(held) else ():
-        scores = [10.0 * math.log10(pixels[k] * 3 / s) if s > 0 else math.inf for s in sse[k]]
-        quality[k] = {"heldOut": [int(i) for i in held], "psnr": [round(s, 3) for s in scores],
-                      "meanPsnr": round(float(np.mean(scores)), 3),
-                      "medianPsnr": round(float(np.median(scores)), 3), "pixels": pixels[k]}
+    quality = {k: report(held, sse[k], pixels[k]) for k in every} if len(held) else {}
     return FitResult(fitted, quality, rows)
 
 

@@ -34,7 +34,8 @@ from lanterna.tiler.progress import Progress
 
 from .bands import luminance
 from .cluster import DaskRunner
-from .engine import REPORT_PIXELS, auto_band_rows, fit_stream
+from .engine import auto_band_rows, fit_stream
+from .held_out import REPORT_PIXELS
 from .models import HOLDOUT_EVERY, model_table
 from .pca import PCA_LABELS
 from .pca_band import pca_models

@@ -9,7 +9,7 @@ import numpy as np
 import pytest
 
 from lanterna.errors import LanternaInputError
-from lanterna.tiler.fit import engine
+from lanterna.tiler.fit import held_out
 from lanterna.tiler.fit.run import fit_collection
 from tests.python.fixtures.photos import BAND, tall_lights, write_tall_stack
 from tests.python.fixtures.stored import stored_format, stored_plane
@@ -30,7 +30,7 @@ def _planes(ds: Path) -> dict[str, bytes]:
 def test_local_cluster_gives_the_local_result(tmp_path: Path,
                                               monkeypatch: pytest.MonkeyPatch) -> None:
     """Also the photometric reports' pixel sample (each band's rows known on the worker)."""
-    monkeypatch.setattr(engine, "REPORT_PIXELS", 10_000)
+    monkeypatch.setattr(held_out, "REPORT_PIXELS", 10_000)
     lights = tall_lights()
     files = write_tall_stack(tmp_path / "shots", lights)
     lp = tmp_path / "shots" / "lights.lp"

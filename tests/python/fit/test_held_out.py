@@ -8,8 +8,9 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from lanterna.tiler.fit import engine
-from lanterna.tiler.fit.engine import fit_stream, report_sample
+from lanterna.tiler.fit import held_out
+from lanterna.tiler.fit.engine import fit_stream
+from lanterna.tiler.fit.held_out import report_sample
 from tests.python.fixtures.glossy import H, W, glossy_scene
 
 
@@ -70,5 +71,5 @@ def test_small_images_keep_the_exact_report(tmp_path: Path,
     img, lights, _ = glossy_scene(seed=4)
     default = _report(tmp_path / "d", img, lights)
     assert default == _report(tmp_path / "e", img, lights, report_pixels=0)
-    monkeypatch.setattr(engine, "REPORT_PIXELS", 100)
+    monkeypatch.setattr(held_out, "REPORT_PIXELS", 100)
     assert _report(tmp_path / "m", img, lights)["ward"]["pixels"] < H * W / 2
