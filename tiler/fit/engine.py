@@ -33,8 +33,8 @@ from lanterna.tiler.progress import Progress
 from lanterna.tiler.render.shading import linear_to_srgb, srgb_to_linear
 
 from . import bands as fb
-from . import held_out as ho
-from .held_out import fused_rows, report, report_sample
+from . import held_out as ho  # its REPORT_PIXELS read at call time (tests change it)
+from .held_out import PREDICT, fused_rows, report, report_sample
 from .hsh import hsh_design_matrix, hsh_pinv
 from .linear_kernel import linear_band
 from .lrgb_kernel import lrgb_band_held_out_compiled
@@ -115,8 +115,6 @@ class _Solver:
         return out
 
 
-
-
 #: Per band: the outputs of its parts in row order (the linear models' whole band first, then
 #: each float sub-band's), or ``None`` without layers; the held-out squared errors per model; and
 #: the pixels they were summed over per model.
@@ -158,7 +156,7 @@ class _Step:
         """Solve ``band`` ``(N, b, W, 3)``, the image's rows from ``y0``: 0–1 float32
         (``div`` 1), or the samples as decoded (8/16-bit, ``div`` 255/65535)."""
         keys = self.full.keys
-        n, b, w, _ = band.shape
+        _, b, w, _ = band.shape
         sse = {k: np.zeros(len(self.held)) for k in [*keys, *self.extra_keys]}
         pixels = {k: b * w for k in sse}
         parts: list[dict[str, fb.Out]] = []
@@ -174,9 +172,6 @@ class _Step:
         if rest:
             sampled = self.loo is not None and self.report_share < 1.0
             twins: list[npt.NDArray[np.float32]] = []
-            if sampled:
-                for k in rest:
-                    pixels[k] = 0
             fused = self.loo is not None and rest == ["normals"] and not self.full.linear and \
                 len(self.full.lights) <= MAX_LIGHTS and not sampled
             for r0, piece in self._floats(band, div):
@@ -195,11 +190,13 @@ class _Step:
                     for k, err in self._held_out(piece, self.loo, rest).items():
                         sse[k] += err
                 parts.append(outs)
-            if self.loo is not None and sum(t.shape[1] for t in twins):
+            if sampled and self.loo is not None:
                 twin = np.concatenate(twins, axis=1)[:, None]  # (N, 1, pixels, 3)
-                for k, err in self._held_out(twin, self.loo, rest).items():
-                    sse[k] += err
+                for k in rest:
                     pixels[k] = twin.shape[2]
+                if twin.shape[2]:
+                    for k, err in self._held_out(twin, self.loo, rest).items():
+                        sse[k] += err
         return (parts if self.layers else None), sse, pixels
 
     def _whole(self, band: npt.NDArray[np.generic], div: float, keys: Sequence[str],
@@ -267,7 +264,7 @@ class _Step:
         for k in keys:
             sse[k] = np.zeros(len(self.held))
             for j, i in enumerate(self.held):
-                pred = ho.PREDICT[k](fitted[k], self.full.lights[i])
+                pred = PREDICT[k](fitted[k], self.full.lights[i])
                 if self.full.linear and k in ("normals", "ward"):
                     pred = linear_to_srgb(pred)
                 diff = pred.reshape(-1) - actual[j]
