@@ -42,7 +42,8 @@ _STATS = 12  # Σaa, Σay (r, g, b), Σyy, 1/Σaa, Lambert-only kd (r, g, b), it
 def _ward(raw: npt.NDArray[np.float32], nrm: npt.NDArray[np.float64],
           lights: npt.NDArray[np.float64], half: npt.NDArray[np.float64],
           grid: npt.NDArray[np.float64], qa: npt.NDArray[np.float64],
-          twice: npt.NDArray[np.bool_], min_cosi: float, saturated: float, cos_max: float,
+          twice: npt.NDArray[np.bool_], narrowing: npt.NDArray[np.bool_], min_cosi: float,
+          saturated: float, cos_max: float,
           min_lobe: int, lobe_width: float, lo: float, hi: float,
           kd_out: npt.NDArray[np.float32],
           ks_out: npt.NDArray[np.float32], al_out: npt.NDArray[np.float32]) -> None:
@@ -73,7 +74,7 @@ def _ward(raw: npt.NDArray[np.float32], nrm: npt.NDArray[np.float64],
             _sums(samples, nearest, qa[k], inv4[k], lobe_width, sums, lobes,
                   k % _CHAIN, twice[k])
             _solve(stats, sums, grid[k], cos_max, min_lobe, best, False)
-            if _narrower_all_fail(sums, min_lobe, qa, k):
+            if narrowing[k] and _all_fail(sums, min_lobe):
                 break  # every lane failed the lobe test: each later α is its Lambert again
         # the best α as its gloss level's, and kd, ks solved again there where ks > 0
         qs = np.empty(_LANES)
@@ -186,17 +187,13 @@ def _sums(samples: npt.NDArray[np.float64], nearest: npt.NDArray[np.float64], qa
 
 
 @numba.njit(cache=True, nogil=True)
-def _narrower_all_fail(sums: npt.NDArray[np.float64], min_lobe: int,
-                       qa: npt.NDArray[np.float64], k: int) -> bool:
-    """Whether no lane has ``min_lobe`` samples in the lobe at α ``k`` and every later α is
-    narrower: a lobe holds no more samples at a narrower α, so each later α fails too and
-    gives the lane its Lambert fit again, whose SSE does not depend on α (never better)."""
+def _all_fail(sums: npt.NDArray[np.float64], min_lobe: int) -> bool:
+    """Whether no lane has ``min_lobe`` samples in the lobe.  Where no later α is wider
+    (``narrowing``), a lobe holds no more samples at them, so each fails too and gives the lane
+    its Lambert fit again, whose SSE does not depend on α (never better)."""
     L = _LANES
     for q in range(L):
         if sums[5 * L + q] >= min_lobe:
-            return False
-    for j in range(k + 1, qa.shape[0]):
-        if qa[j] < qa[k]:
             return False
     return True
 
@@ -311,12 +308,14 @@ def ward_band_compiled(raw: npt.NDArray[np.float32], nrm: npt.NDArray[np.floatin
         if abs(qa[k] - 2.0 * qa[k - _CHAIN]) <= 1e-9 * qa[k]:
             qa[k] = 2.0 * qa[k - _CHAIN]
             twice[k] = True
+    # per α, whether no later α is wider (its 1/α² smaller): the search may stop there
+    narrowing = np.array([bool(np.all(qa[k + 1:] >= qa[k])) for k in range(len(qa))], np.bool_)
     kd = np.empty((b * w, 3), np.float32)
     ks = np.empty((b * w, 3), np.float32)
     al = np.empty(b * w, np.float32)
     _ward(np.ascontiguousarray(raw, np.float32).reshape(n, b * w, 3),
           np.ascontiguousarray(nrm, np.float64).reshape(b * w, 3), lf, half,
-          np.ascontiguousarray(grid, np.float64), qa, twice, ws.MIN_COSI, ws.SATURATED,
+          np.ascontiguousarray(grid, np.float64), qa, twice, narrowing, ws.MIN_COSI, ws.SATURATED,
           math.cos(math.radians(ws.MAX_SPECULAR_ANGLE)), ws.MIN_LOBE_SAMPLES, ws.LOBE_WIDTH,
           float(limits[0]), float(limits[1]), kd, ks, al)
     return kd.reshape(b, w, 3), ks.reshape(b, w, 3), al.reshape(b, w)
