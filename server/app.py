@@ -132,9 +132,12 @@ def _file_response(root: Path, target: Path) -> BaseResponse:
 
 def _json_response(root: Path, target: Path) -> BaseResponse:
     """Serve a JSON document with the dataset's base URL rewritten to the request's."""
-    text = target.read_text()
-    # the description of the version the document belongs to (the dataset's link resolved)
+    # The description of the version the document belongs to (the dataset's link resolved),
+    # read before the document: a version removed after it fails on the document's read, one
+    # being removed before it fails here, and both take the caller's one retry, never a
+    # document served with its recorded base.
     recorded = _recorded_base(root / target.relative_to(root).parts[0])
+    text = target.read_text()
     served = request.url_root.rstrip("/") + "/datasets"
     if recorded and recorded != served:
         text = text.replace(recorded + "/", served + "/")
@@ -159,19 +162,28 @@ _MAX_BASES = 1024
 
 
 def _recorded_base(dataset_dir: Path) -> str | None:
+    """The ``baseUrl`` of the dataset folder's ``lanterna.json``, or ``None`` if it has none.
+
+    Raises ``FileNotFoundError`` if the folder is a published version (``.NAME.v-ID``, which
+    always has its description) whose description is gone: the version is being removed.
+    """
     path = dataset_dir / "lanterna.json"
+    version = dataset_dir.name.startswith(".") and ".v-" in dataset_dir.name
     try:
         real = path.resolve()
         st = real.stat()
+        cached = _BASES.get(real)
+        stamp = (st.st_ino, st.st_size, st.st_mtime_ns)
+        if cached is not None and cached[0] == stamp:
+            return cached[1]
+        text = real.read_text()
     except OSError:
+        if version:
+            raise FileNotFoundError(path) from None
         return None
-    stamp = (st.st_ino, st.st_size, st.st_mtime_ns)
-    cached = _BASES.get(real)
-    if cached is not None and cached[0] == stamp:
-        return cached[1]
     try:
-        base: str | None = str(json.loads(real.read_text())["baseUrl"]).rstrip("/")
-    except (OSError, ValueError, KeyError, TypeError):
+        base: str | None = str(json.loads(text)["baseUrl"]).rstrip("/")
+    except (ValueError, KeyError, TypeError):
         base = None
     if len(_BASES) >= _MAX_BASES:
         _BASES.clear()

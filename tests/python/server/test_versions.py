@@ -100,3 +100,19 @@ def test_a_tiff_removed_by_a_republish_is_read_from_the_new_version(
     assert resp.status_code == 200 and len(calls) == 2
     pixels = pyvips.Image.new_from_buffer(resp.data, "").numpy()
     assert pixels.shape == (40, 60, 3) and (pixels == 30).all()
+
+
+def test_a_document_of_a_version_being_removed_is_read_from_the_new_version(
+        root: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+    # A version half-way through its removal: its description already gone, its image
+    # descriptions not yet. Served from it, info.json would keep its recorded base URL.
+    _write(root / "obj", "Republished", 30)
+    dying = root / ".obj.v-19990101T000000_abcdef"  # made after the republish, which removes it
+    shutil.copytree(os.path.realpath(root / "obj"), dying)
+    (dying / "lanterna.json").unlink()
+    recorded = (dying / "iiif/pic/info.json").read_text()
+    calls = _resolving_first_to(dying, app_mod, monkeypatch)
+    resp = create_app({"DATA_ROOT": root}).test_client().get("/datasets/obj/iiif/pic/info.json")
+    assert resp.status_code == 200 and len(calls) == 2
+    served = resp.get_json()["id"]
+    assert served.startswith("http://localhost/datasets/obj/") and served not in recorded
