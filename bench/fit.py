@@ -102,14 +102,15 @@ def _bare_decode(files: list[Path]) -> None:
 
 def _read_pass(files: list[Path], rows: int) -> None:
     """The fit's own read, with nothing solved: every band as decoded, read ahead, each band's
-    files decoded on two threads while nobody waits (:func:`~lanterna.tiler.fit.engine._bands`:
-    here the consumer always waits, so the decode is always parallel)."""
-    from lanterna.tiler.fit.engine import _bands
+    files decoded on two threads while nobody waits
+    (:func:`~lanterna.tiler.fit.row_bands.read_bands`: here the consumer always waits, so the
+    decode is always parallel)."""
+    from lanterna.tiler.fit.row_bands import read_bands
     from lanterna.tiler.inputs.stack import StackReader
 
     reader = StackReader(files)
     h = reader.shape[1]
-    for _ in _bands(reader, [(y0, min(h, y0 + rows)) for y0 in range(0, h, rows)]):
+    for _ in read_bands(reader, [(y0, min(h, y0 + rows)) for y0 in range(0, h, rows)]):
         pass
     reader.close()
 
@@ -118,9 +119,10 @@ def _fit(files: Any, lts: np.ndarray, key: str, held: int, scratch: Path) -> Non
     """One streamed fit of ``key`` (of the image files, or of a stack in memory); a PCA basis
     (rbf, bilinear) also makes its sampling pass first, as ``lanterna fit`` does
     (:func:`~lanterna.tiler.fit.run.fit_sets`)."""
-    from lanterna.tiler.fit.engine import auto_band_rows, fit_stream
+    from lanterna.tiler.fit.engine import fit_stream
     from lanterna.tiler.fit.pca import PcaSpec
     from lanterna.tiler.fit.pca_band import pca_models
+    from lanterna.tiler.fit.row_bands import auto_band_rows
     from lanterna.tiler.formats.pca_model import PCA_TYPES
     from lanterna.tiler.inputs.stack import StackReader
 

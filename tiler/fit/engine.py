@@ -15,9 +15,7 @@ groups are those files.
 
 from __future__ import annotations
 
-from collections import deque
 from collections.abc import Callable, Iterable, Iterator, Sequence
-from concurrent.futures import ThreadPoolExecutor
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any, Protocol
@@ -28,7 +26,7 @@ from threadpoolctl import threadpool_limits
 
 from lanterna.tiler.formats.planes import PlaneLayer
 from lanterna.tiler.formats.ptm_model import ptm_weights
-from lanterna.tiler.inputs.stack import DECODE_THREADS, StackReader
+from lanterna.tiler.inputs.stack import StackReader
 from lanterna.tiler.progress import Progress
 from lanterna.tiler.render.shading import linear_to_srgb, srgb_to_linear
 
@@ -41,26 +39,22 @@ from .lrgb_kernel import lrgb_band_held_out_compiled
 from .normals import check_lights
 from .normals_held_out_kernel import MAX_LIGHTS
 from .ptm import ptm_design_matrix, ptm_pinv
+from .row_bands import (
+    SUB_BAND_BUDGET,
+    WARD_BAND_BUDGET,
+    Images,
+    auto_band_rows,
+    band_spans,
+    read_bands,
+    sub_band_rows,
+)
 from .sinks import Sinks
 from .unit_kernel import to_unit_compiled
 
-Images = npt.NDArray[np.float32] | StackReader
 Lights = npt.NDArray[np.float64]
 
-#: Bytes of input (N × rows × W × 3 float32) solved at once when the band height is automatic.
-BAND_BUDGET = 48 << 20
-#: Bytes of float input (N × rows × W × 3 float32) solved at once: read bands are split into
-#: sub-bands this size, which stay in the CPU caches with their solvers' temporaries.
-SUB_BAND_BUDGET = 4 << 20
-#: Bands read ahead of the one being solved (each a buffer of the band as decoded).
-READ_AHEAD = 2
 #: Models the engine fits, by CLI name.
 MODEL_KEYS = ("ptm", "ptm-lrgb", "hsh", "normals", "ward")
-
-
-def auto_band_rows(n: int, width: int, budget: int = BAND_BUDGET) -> int:
-    """Rows per band so that the float input band ``(n, rows, width, 3)`` fits ``budget``."""
-    return max(1, min(256, budget // max(1, n * width * 12)))
 
 
 @dataclass
@@ -174,7 +168,8 @@ class _Step:
             twins: list[npt.NDArray[np.float32]] = []
             fused = self.loo is not None and rest == ["normals"] and not self.full.linear and \
                 len(self.full.lights) <= MAX_LIGHTS and not sampled
-            for r0, piece in self._floats(band, div):
+            budget = WARD_BAND_BUDGET if "ward" in rest else SUB_BAND_BUDGET
+            for r0, piece in self._floats(band, div, sub_band_rows(band.shape[0], w, budget)):
                 if fused:  # the fit and its leave-one-out twin in one pass (the layer
                     # is made even for a report alone: it is a small part of the pass)
                     out, err = fb.normals_band_held_out(piece, self.full.lights, self.train,
@@ -230,14 +225,14 @@ class _Step:
             outs[k] = {"coeffsByTerm": coeffs.reshape(-1, b, w, c), "lo": lo, "hi": hi}
         return outs
 
-    def _floats(self, band: npt.NDArray[np.generic], div: float
+    def _floats(self, band: npt.NDArray[np.generic], div: float, rows: int
                 ) -> Iterator[tuple[int, npt.NDArray[np.float32]]]:
-        """``band`` as float32 0–1 sub-bands of :func:`sub_band_rows` rows (with their first
-        row in ``band``), each valid until the next is asked for: views of a float band, or
-        converted into one reused buffer (a fresh 4 MB array each time costs a page fault per
-        4 KB page, as much as the conversion itself; no solver keeps a view of its input)."""
+        """``band`` as float32 0–1 sub-bands of ``rows`` rows (with their first row in
+        ``band``), each valid until the next is asked for: views of a float band, or converted
+        into one reused buffer (a fresh 4 MB array each time costs a page fault per 4 KB page,
+        as much as the conversion itself; no solver keeps a view of its input)."""
         n, b, w, c = band.shape
-        rows = sub_band_rows(n, w)
+        rows = max(1, min(rows, b))
         native = band.dtype != np.float32 or div != 1.0
         if native and (self._unit is None or self._unit.size < n * rows * w * c):
             self._unit = np.empty(n * rows * w * c, np.float32)
@@ -359,7 +354,8 @@ def fit_stream(images: Images, lights: Lights, keys: Sequence[str], scratch: Pat
     sse = {k: np.zeros(len(held)) for k in every}
     sinks = Sinks(scratch, w, h)
     bar = progress("fitting " + ", ".join(every), h) if progress else None
-    spans = [(y0, min(h, y0 + rows)) for y0 in range(0, h, rows)]
+    spans = band_spans(h, rows, sub_band_rows(n, w) if band_rows is None and runner is None
+                       and isinstance(images, StackReader) else rows)
     limit = ho.REPORT_PIXELS if report_pixels is None else report_pixels
     share = 1.0 if limit <= 0 else min(1.0, limit / max(1, h * w))
     step = _Step(full, loo, held, train, layers,
@@ -370,7 +366,7 @@ def fit_stream(images: Images, lights: Lights, keys: Sequence[str], scratch: Pat
     results: Iterable[tuple[int, _StepResult]]
     if runner is None:
         results = ((y1, step(band, div, y1 - band.shape[1]))
-                   for y1, band, div in _bands(images, spans))
+                   for y1, band, div in read_bands(images, spans))
     else:
         results = zip((y1 for _, y1 in spans), runner.bands(images, spans, step), strict=True)
     # one BLAS thread: the pass has its own (the read-ahead decode, the kernels'); idle BLAS
@@ -395,49 +391,3 @@ def fit_stream(images: Images, lights: Lights, keys: Sequence[str], scratch: Pat
         fitted.update({m.key: m.finish(progress) for m in extra})
     quality = {k: report(held, sse[k], pixels[k]) for k in every} if len(held) else {}
     return FitResult(fitted, quality, rows)
-
-
-def sub_band_rows(n: int, width: int, budget: int = SUB_BAND_BUDGET) -> int:
-    """Rows solved at once so that the float sub-band ``(n, rows, width, 3)`` fits ``budget``."""
-    return max(1, budget // max(1, n * width * 12))
-
-
-def _bands(images: Images, spans: Sequence[tuple[int, int]]
-           ) -> Iterator[tuple[int, npt.NDArray[np.generic], float]]:
-    """Yield ``(y1, band, div)`` for each span, in order: ``band / div`` is ``images[:, y0:y1]``.
-
-    A :class:`StackReader` whose images share a sample format yields its bands as decoded
-    (8-bit: a quarter of the float band), :data:`READ_AHEAD` bands read ahead in a thread (two
-    rather than one took ~5 % off PTM and HSH fits at 2048²: fewer waits for a slow band), each
-    band's files decoded in parallel (:data:`DECODE_THREADS`; libvips runs without the GIL)
-    while the solver waits, into one of ``READ_AHEAD + 1`` reused buffers; a band is valid until
-    the next one is asked for.  Other stacks yield float32 bands.
-    """
-    dtype = images.native_dtype() if isinstance(images, StackReader) else None
-    n, width = images.shape[0], images.shape[2]
-    tallest = max((y1 - y0 for y0, y1 in spans), default=0)
-    buffers = [np.empty(n * tallest * width * 3 if dtype is not None else 0, dtype or np.uint8)
-               for _ in range(READ_AHEAD + 1)]
-    with ThreadPoolExecutor(max_workers=DECODE_THREADS,
-                            thread_name_prefix="lanterna-decode") as decoders, \
-            ThreadPoolExecutor(max_workers=1, thread_name_prefix="lanterna-read") as pool:
-
-        def read(i: int, parallel: bool) -> tuple[npt.NDArray[np.generic], float]:
-            y0, y1 = spans[i]
-            if dtype is None or not isinstance(images, StackReader):
-                return np.asarray(images[:, y0:y1], np.float32), 1.0
-            band = buffers[i % len(buffers)][:n * (y1 - y0) * width * 3].reshape(
-                n, y1 - y0, width, 3)
-            return band, images.band_into(y0, y1, band, decoders if parallel else None)
-
-        # the bands ahead are decoded on every core only while the solver waits for the decode;
-        # when a band is ready before it is asked for, the solver is the slower side and one
-        # decoding thread leaves it the other core (measured: the normals' 2048² fit 1.35–1.38 s
-        # with the decode always parallel, 1.20 s so)
-        ahead = deque(pool.submit(read, i, True) for i in range(min(READ_AHEAD, len(spans))))
-        for i, (_, y1) in enumerate(spans):
-            parallel = not ahead[0].done()
-            band, div = ahead.popleft().result()
-            if i + READ_AHEAD < len(spans):
-                ahead.append(pool.submit(read, i + READ_AHEAD, parallel))
-            yield y1, band, div

@@ -24,12 +24,13 @@ from lanterna.tiler.formats.ptm_model import Ptm
 from lanterna.tiler.inputs.stack import StackReader
 
 from .bands import normals_band, ptm_rgb_band
-from .engine import auto_band_rows, fit_stream
+from .engine import fit_stream
 from .hsh import fit_hsh
 from .normals import RANK_WINDOW, SHADOW_FRACTION, check_lights
 from .pca import PCA_LABELS, PcaSpec, parse_spec
 from .pca_band import fit_pca, pca_models
 from .ptm import fit_ptm_lrgb, ptm_design_matrix, ptm_pinv, quantize_coefficients
+from .row_bands import auto_band_rows
 from .ward import Ward, fit_ward, quantize_ward
 
 Stack = npt.NDArray[np.float32]

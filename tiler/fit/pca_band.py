@@ -25,11 +25,11 @@ from lanterna.tiler.formats.planes import PlaneGroup, PlaneLayer
 from lanterna.tiler.formats.strip_tiff import StripTiffWriter
 from lanterna.tiler.progress import Progress
 
-from .engine import sub_band_rows
 from .pca import PcaSpec
 from .pca_basis import Moments, PcaFit, fit_basis
 from .pca_kernel import light_major, quantise_planes
 from .pca_sample import sample_pixels
+from .row_bands import sub_band_rows
 
 Out = dict[str, npt.NDArray[np.generic]]
 
@@ -63,7 +63,7 @@ class PcaStep:
                  ) -> tuple[Out | None, npt.NDArray[np.float64]]:
         """Planes and held-out errors of ``band`` ``(n, b, W, 3)``: float32 in 0–1 (``div`` 1)
         or as decoded (``div`` 255/65535), projected in the engine's float sub-bands
-        (:func:`~.engine.sub_band_rows`), made light-major in one reused buffer."""
+        (:func:`~.row_bands.sub_band_rows`), made light-major in one reused buffer."""
         n, b, w, _ = band.shape
         pixels = np.ascontiguousarray(band).reshape(n, b * w, 3)
         groups = -(-self.full.basis.nplanes // 3)

@@ -34,11 +34,12 @@ from lanterna.tiler.progress import Progress
 
 from .bands import luminance
 from .cluster import DaskRunner
-from .engine import auto_band_rows, fit_stream
+from .engine import fit_stream
 from .held_out import REPORT_PIXELS
 from .models import HOLDOUT_EVERY, model_table
 from .pca import PCA_LABELS
 from .pca_band import pca_models
+from .row_bands import auto_band_rows
 
 #: Largest memory the open decoders of a collection may hold before the images are re-encoded
 #: as tiled TIFFs (:meth:`~lanterna.tiler.inputs.stack.StackReader.decoder_bytes`).

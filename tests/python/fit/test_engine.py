@@ -234,3 +234,49 @@ def test_bands_as_decoded_in_parallel_equal_the_float_bands(
         for ga, gb in zip(a.layers[key].groups, b.layers[key].groups, strict=True):
             assert ga.scale == gb.scale and ga.bias == gb.bias
             assert np.array_equal(ga.data.rows(0, H), gb.data.rows(0, H))
+
+
+def test_a_short_first_band_fits_as_whole_bands_do(
+        collection: tuple[list[Path], npt.NDArray[np.float64]], tmp_path: Path,
+        monkeypatch: pytest.MonkeyPatch) -> None:
+    """With automatic band heights the pass reads a first band of one sub-band's rows (the
+    solver starts sooner), then whole bands: every layer and report is what bands of one
+    height give."""
+    from lanterna.tiler.fit import engine
+    from lanterna.tiler.progress import Progress
+
+    files, lights = collection
+    monkeypatch.setattr(engine, "sub_band_rows", lambda n, width, budget=0: 5)
+    done: list[int] = []
+
+    class Recorder(Progress):
+        def update(self, rows: int) -> None:
+            done.append(rows)
+
+    keys = ["ptm", "ptm-lrgb", "hsh", "normals", "ward"]
+    (tmp_path / "auto").mkdir()
+    (tmp_path / "fixed").mkdir()
+    auto = fit_stream(StackReader(files), lights, keys, tmp_path / "auto", holdout_every=4,
+                      progress=lambda label, total: Recorder(label, total))
+    assert done[:2] == [5, 5 + engine.auto_band_rows(N, W)]  # then whole bands
+    fixed = fit_stream(StackReader(files), lights, keys, tmp_path / "fixed", holdout_every=4,
+                       band_rows=engine.auto_band_rows(N, W))
+    assert auto.quality.keys() == fixed.quality.keys()
+    for key in keys:
+        assert auto.quality[key]["psnr"] == pytest.approx(fixed.quality[key]["psnr"], abs=2e-3)
+        for ga, gb in zip(auto.layers[key].groups, fixed.layers[key].groups, strict=True):
+            assert ga.scale == gb.scale and ga.bias == gb.bias
+            assert np.array_equal(ga.data.rows(0, H), gb.data.rows(0, H))
+
+
+def test_band_spans_cover_the_rows_once() -> None:
+    from lanterna.tiler.fit.engine import band_spans
+
+    for height, rows, first in [(1000, 256, 5), (1000, 256, 300), (7, 256, 5), (1, 4, 9),
+                                (513, 256, 256)]:
+        spans = band_spans(height, rows, first)
+        assert spans[0] == (0, min(height, first, rows))
+        assert all(a[1] == b[0] for a, b in zip(spans, spans[1:], strict=False))
+        assert spans[-1][1] == height
+        assert all(0 < y1 - y0 <= rows for y0, y1 in spans[1:])
+    assert band_spans(0, 256, 5) == []
