@@ -115,6 +115,17 @@ def _read_pass(files: list[Path], rows: int) -> None:
     reader.close()
 
 
+def auto_band_rows(n: int, width: int) -> int:
+    """The fit's automatic band height, where this checkout or the one ``compare`` measures
+    keeps it (tiler/fit/row_bands.py since 0f5b240, tiler/fit/engine.py before)."""
+    try:
+        from lanterna.tiler.fit import row_bands as home
+    except ImportError:
+        from lanterna.tiler.fit import engine as home
+    rows: int = home.auto_band_rows(n, width)
+    return rows
+
+
 def _fit(files: Any, lts: np.ndarray, key: str, held: int, scratch: Path) -> None:
     """One streamed fit of ``key`` (of the image files, or of a stack in memory); a PCA basis
     (rbf, bilinear) also makes its sampling pass first, as ``lanterna fit`` does
@@ -122,7 +133,6 @@ def _fit(files: Any, lts: np.ndarray, key: str, held: int, scratch: Path) -> Non
     from lanterna.tiler.fit.engine import fit_stream
     from lanterna.tiler.fit.pca import PcaSpec
     from lanterna.tiler.fit.pca_band import pca_models
-    from lanterna.tiler.fit.row_bands import auto_band_rows
     from lanterna.tiler.formats.pca_model import PCA_TYPES
     from lanterna.tiler.inputs.stack import StackReader
 
@@ -141,7 +151,6 @@ def _fit(files: Any, lts: np.ndarray, key: str, held: int, scratch: Path) -> Non
 
 
 def throughput(args: argparse.Namespace) -> dict[str, Any]:
-    from lanterna.tiler.fit.engine import auto_band_rows
     from lanterna.tiler.inputs.lp import read_lp
 
     work = Path(tempfile.mkdtemp(prefix="lanterna-bench-fit-", dir=args.tmp))
