@@ -32,7 +32,7 @@ from lanterna.tiler.render.shading import linear_to_srgb, srgb_to_linear
 
 from . import bands as fb
 from . import held_out as ho  # its REPORT_PIXELS read at call time (tests change it)
-from .held_out import PREDICT, fused_rows, report, report_sample
+from .held_out import PREDICT, fused_rows, report
 from .hsh import hsh_design_matrix, hsh_pinv
 from .linear_kernel import linear_band
 from .lrgb_kernel import lrgb_band_held_out_compiled
@@ -48,6 +48,7 @@ from .row_bands import (
     read_bands,
     sub_band_rows,
 )
+from .sample_kernel import report_indices
 from .sinks import Sinks
 from .unit_kernel import to_unit_compiled
 
@@ -179,8 +180,9 @@ class _Step:
                     continue
                 outs = self.full.solve(piece, rest) if self.layers else {}
                 if sampled:  # the twin's pixels of these rows, fitted once for the band
-                    mask = report_sample(y0 + r0, piece.shape[1], w, self.report_share)
-                    twins.append(piece[:, mask])
+                    idx = report_indices(y0 + r0, piece.shape[1], w, self.report_share)
+                    flat = np.ascontiguousarray(piece).reshape(piece.shape[0], -1, 3)
+                    twins.append(np.take(flat, idx, axis=1))
                 elif self.loo is not None:
                     for k, err in self._held_out(piece, self.loo, rest).items():
                         sse[k] += err

@@ -73,3 +73,13 @@ def test_small_images_keep_the_exact_report(tmp_path: Path,
     assert default == _report(tmp_path / "e", img, lights, report_pixels=0)
     monkeypatch.setattr(held_out, "REPORT_PIXELS", 100)
     assert _report(tmp_path / "m", img, lights)["ward"]["pixels"] < H * W / 2
+
+
+def test_compiled_sample_indices_are_the_sample() -> None:
+    from lanterna.tiler.fit.sample_kernel import report_indices
+
+    for y0, rows, width, share in [(0, 300, 257, 0.1), (37, 1, 257, 0.1), (5000, 85, 2048, 1 / 64),
+                                   (0, 40, 40, 1.0), (3, 40, 40, 0.0)]:
+        mask = report_sample(y0, rows, width, share)
+        got = report_indices(y0, rows, width, share)
+        assert np.array_equal(got, np.flatnonzero(mask)), (y0, rows, width, share)
