@@ -83,3 +83,25 @@ def test_compiled_sample_indices_are_the_sample() -> None:
         mask = report_sample(y0, rows, width, share)
         got = report_indices(y0, rows, width, share)
         assert np.array_equal(got, np.flatnonzero(mask)), (y0, rows, width, share)
+
+
+def test_the_sampled_twin_fitted_in_batches_gives_the_same_report(
+        tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+    """A local pass fits the sampled twin's pixels in batches of several bands (the last one at
+    the end of the pass), a Dask worker band by band: every batch size gives the same report
+    over the same pixels."""
+    from lanterna.tiler.fit import engine
+
+    img, lights, _ = glossy_scene(seed=5)
+    limit = H * W // 4
+    reports = {}
+    for batch in (None, 0, 50, 10**9):
+        if batch is not None:
+            monkeypatch.setattr(engine, "_twin_batch", lambda n, width, b=batch: b)
+        reports[batch] = _report(tmp_path / f"b{batch}", img, lights, report_pixels=limit,
+                                 band_rows=3)
+    count = int(report_sample(0, H, W, limit / (H * W)).sum())
+    for k in ("normals", "ward"):
+        for batch, quality in reports.items():
+            assert quality[k]["pixels"] == count, (k, batch)
+            assert np.allclose(quality[k]["psnr"], reports[0][k]["psnr"], atol=2e-3), (k, batch)
