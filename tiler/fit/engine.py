@@ -186,7 +186,7 @@ class _Step:
                     parts.append({"normals": out} if self.layers else {})
                     continue
                 outs = self.full.solve(piece, rest) if self.layers else {}
-                if sampled:  # the twin's pixels of these rows, fitted once for the band
+                if sampled:  # the twin's pixels of these rows, fitted in batches
                     idx = report_indices(y0 + r0, piece.shape[1], w, self.report_share)
                     flat = np.ascontiguousarray(piece).reshape(piece.shape[0], -1, 3)
                     twins.append(np.take(flat, idx, axis=1))
