@@ -33,6 +33,17 @@ PREDICT: dict[str, Callable[[fb.Out, npt.NDArray[np.float64]], fb.Band]] = {
 }
 
 
+#: SplitMix64's increment γ and its two mixing multipliers (Steele, Lea & Flood 2014), the
+#: hash of :func:`report_sample` and of its compiled twin (:mod:`.sample_kernel`).
+SPLITMIX_GAMMA, SPLITMIX_MUL1, SPLITMIX_MUL2 = (0x9E3779B97F4A7C15, 0xBF58476D1CE4E5B9,
+                                                0x94D049BB133111EB)
+
+
+def sample_threshold(share: float) -> int:
+    """The bound below which a pixel's 53-bit hash puts it in a sample of ``share``."""
+    return int(share * (1 << 53))
+
+
 def report_sample(y0: int, rows: int, width: int, share: float) -> npt.NDArray[np.bool_]:
     """The pixels of rows ``y0 … y0 + rows`` (``(rows, width)`` mask) in the leave-one-out
     twin's sample: those whose index ``i = y·width + x`` gives a SplitMix64 output (the mix of
@@ -43,11 +54,11 @@ def report_sample(y0: int, rows: int, width: int, share: float) -> npt.NDArray[n
     low; this sample of 1/64, 0.01 dB)."""
     idx = (np.arange(y0, y0 + rows, dtype=np.uint64)[:, None] * np.uint64(width)
            + np.arange(width, dtype=np.uint64)[None, :])
-    z = (idx + np.uint64(1)) * np.uint64(0x9E3779B97F4A7C15)
-    z = (z ^ (z >> np.uint64(30))) * np.uint64(0xBF58476D1CE4E5B9)
-    z = (z ^ (z >> np.uint64(27))) * np.uint64(0x94D049BB133111EB)
+    z = (idx + np.uint64(1)) * np.uint64(SPLITMIX_GAMMA)
+    z = (z ^ (z >> np.uint64(30))) * np.uint64(SPLITMIX_MUL1)
+    z = (z ^ (z >> np.uint64(27))) * np.uint64(SPLITMIX_MUL2)
     z ^= z >> np.uint64(31)
-    mask: npt.NDArray[np.bool_] = (z >> np.uint64(11)) < np.uint64(int(share * (1 << 53)))
+    mask: npt.NDArray[np.bool_] = (z >> np.uint64(11)) < np.uint64(sample_threshold(share))
     return mask
 
 

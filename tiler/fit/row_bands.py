@@ -55,7 +55,7 @@ def sub_band_rows(n: int, width: int, budget: int = SUB_BAND_BUDGET) -> int:
 
 
 def read_bands(images: Images, spans: Sequence[tuple[int, int]]
-           ) -> Iterator[tuple[int, npt.NDArray[np.generic], float]]:
+               ) -> Iterator[tuple[int, npt.NDArray[np.generic], float]]:
     """Yield ``(y1, band, div)`` for each span, in order: ``band / div`` is ``images[:, y0:y1]``.
 
     A :class:`StackReader` whose images share a sample format yields its bands as decoded

@@ -13,6 +13,9 @@ import numpy as np
 import numpy.typing as npt
 
 from . import compiled  # noqa: F401 - the threading layer, before any kernel runs
+from .held_out import SPLITMIX_GAMMA, SPLITMIX_MUL1, SPLITMIX_MUL2, sample_threshold
+
+_GAMMA, _MUL1, _MUL2 = np.uint64(SPLITMIX_GAMMA), np.uint64(SPLITMIX_MUL1), np.uint64(SPLITMIX_MUL2)
 
 
 @numba.njit(cache=True, nogil=True)
@@ -21,9 +24,9 @@ def _indices(y0: int, rows: int, width: int, threshold: np.uint64) -> npt.NDArra
     kept = 0
     base = np.uint64(y0) * np.uint64(width)
     for j in range(rows * width):
-        z = (base + np.uint64(j) + np.uint64(1)) * np.uint64(0x9E3779B97F4A7C15)
-        z = (z ^ (z >> np.uint64(30))) * np.uint64(0xBF58476D1CE4E5B9)
-        z = (z ^ (z >> np.uint64(27))) * np.uint64(0x94D049BB133111EB)
+        z = (base + np.uint64(j) + np.uint64(1)) * _GAMMA
+        z = (z ^ (z >> np.uint64(30))) * _MUL1
+        z = (z ^ (z >> np.uint64(27))) * _MUL2
         z ^= z >> np.uint64(31)
         if (z >> np.uint64(11)) < threshold:
             out[kept] = j
@@ -34,4 +37,4 @@ def _indices(y0: int, rows: int, width: int, threshold: np.uint64) -> npt.NDArra
 def report_indices(y0: int, rows: int, width: int, share: float) -> npt.NDArray[np.intp]:
     """The flat indices ``y·width + x`` (from row ``y0``) of the pixels of rows
     ``y0 … y0 + rows`` in the twin's sample: ``np.flatnonzero(report_sample(...))``."""
-    return _indices(int(y0), int(rows), int(width), np.uint64(int(share * (1 << 53))))
+    return _indices(int(y0), int(rows), int(width), np.uint64(sample_threshold(share)))
