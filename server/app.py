@@ -21,6 +21,7 @@ from flask import Flask, Response, abort, redirect, request, send_from_directory
 from werkzeug.exceptions import NotFound
 from werkzeug.wrappers import Response as BaseResponse
 
+from lanterna.tiler.entry_names import is_version
 from lanterna.tiler.iiif.spec import IMAGE_CONTEXT, PRESENTATION_CONTEXT
 
 from . import annotations_api, api, image_api
@@ -168,7 +169,7 @@ def _recorded_base(dataset_dir: Path) -> str | None:
     always has its description) whose description is gone: the version is being removed.
     """
     path = dataset_dir / "lanterna.json"
-    version = dataset_dir.name.startswith(".") and ".v-" in dataset_dir.name
+    version = is_version(dataset_dir.name)
     try:
         real = path.resolve()
         st = real.stat()

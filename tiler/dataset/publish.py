@@ -21,7 +21,6 @@ import ctypes
 import errno
 import fcntl
 import os
-import re
 import secrets
 import shutil
 import tempfile
@@ -32,11 +31,11 @@ from functools import cache
 from pathlib import Path
 
 from lanterna.errors import LanternaInputError
+from lanterna.tiler.entry_names import entry_name, entry_prefix, parse_entry
 
 from .lock import dataset_lock, same_file
 from .output import write_errors
 
-_ENTRY = re.compile(r"^\.(?P<name>.+)\.(?P<kind>tmp|v|link|old)-(?P<id>[A-Za-z0-9_]+)$")
 _RENAME_EXCHANGE = 2
 _AT_FDCWD = -100
 
@@ -61,7 +60,7 @@ def writing(out: Path) -> Iterator[None]:
 def new_temp(out: Path) -> Path:
     """Make the empty folder ``.NAME.tmp-*`` beside ``out`` for building its next version."""
     with write_errors(out):
-        tmp = Path(tempfile.mkdtemp(prefix=f".{out.name}.tmp-", dir=out.parent))
+        tmp = Path(tempfile.mkdtemp(prefix=entry_prefix(out.name, "tmp"), dir=out.parent))
         tmp.chmod(0o755)  # mkdtemp makes it private; the published dataset is public
     return tmp
 
@@ -74,7 +73,7 @@ def publish(tmp: Path, out: Path) -> None:
     Raises ``OSError`` with nothing changed if the new version cannot be put in place.
     """
     parent, name, vid = out.parent, out.name, _version_id()
-    version, link = parent / f".{name}.v-{vid}", parent / f".{name}.link-{vid}"
+    version, link = parent / entry_name(name, "v", vid), parent / entry_name(name, "link", vid)
     old: Path | None = None
     published = False
     os.rename(tmp, version)
@@ -85,7 +84,7 @@ def publish(tmp: Path, out: Path) -> None:
             os.replace(link, out)  # the atomic step
             published = True
         else:  # a plain folder (an earlier Lanterna's dataset): swap it for the link
-            old = parent / f".{name}.old-{vid}"
+            old = parent / entry_name(name, "old", vid)
             if exchange(link, out):
                 published = True
                 old = link if _rename_quietly(link, old) is None else old
@@ -115,7 +114,7 @@ def replace_folder(tmp: Path, out: Path) -> None:
     elif exchange(tmp, out):
         _remove(tmp)  # now the previous tree
     else:
-        old = out.with_name(f".{out.name}.old-{_version_id()}")
+        old = out.with_name(entry_name(out.name, "old", _version_id()))
         os.rename(out, old)
         os.rename(tmp, out)
         _remove(old)
@@ -215,9 +214,9 @@ def _renameat2() -> Callable[..., int] | None:
 def _entries(out: Path) -> Iterator[tuple[str, str]]:
     """``(entry name, kind)`` of the hidden entries of dataset ``out`` in its folder."""
     for e in os.scandir(out.parent):
-        m = _ENTRY.match(e.name)
-        if m and m.group("name") == out.name:
-            yield e.name, m.group("kind")
+        parsed = parse_entry(e.name)
+        if parsed and parsed[0] == out.name:
+            yield e.name, parsed[1]
 
 
 def _our_version(out: Path) -> Path | None:
@@ -225,8 +224,7 @@ def _our_version(out: Path) -> Path | None:
     if not out.is_symlink():
         return None
     target = os.readlink(out)
-    m = _ENTRY.match(target)
-    if "/" in target or not m or m.group("kind") != "v" or m.group("name") != out.name:
+    if "/" in target or parse_entry(target) != (out.name, "v"):
         return None
     return out.parent / target
 
