@@ -3,6 +3,7 @@
     .venv/bin/python bench/fit.py throughput [--size 4096] [--lights 24] [--json OUT]
     .venv/bin/python bench/fit.py memory [--size 32768] [--lights 8] [--json OUT]
     .venv/bin/python bench/fit.py compare --python OTHER/.venv/bin/python [--size 1024] [--json OUT]
+    .venv/bin/python bench/fit.py compare --stack COLLECTION/dirs.lp [--python OTHER] [--json OUT]
 
 ``throughput`` writes a synthetic multi-light JPEG stack (a bumpy Lambert + Phong object,
 procedural in libvips, so it never exists whole in memory), then times, interleaved in one run
@@ -15,7 +16,10 @@ quantise, write the 8-bit planes; tiling excluded — see bench/tiler.py).
 shared machine: per round and model, each version fits in a fresh process (imports and compiled
 kernels loaded first, then the bare decode and the fit timed back to back, with the process's CPU
 time), the two versions alternating; it reports per version the median and the minimum of the
-per-run ratio fit ÷ decode, and the same for CPU time.
+per-run ratio fit ÷ decode, and the same for CPU time.  ``--stack`` measures a collection on
+disk (a ``.lp`` file and its images: a real capture) instead of a synthetic stack; without
+``--python`` only this checkout is measured.  Either way the stack's size and JPEG bytes per
+pixel are reported (a JPEG's decode time grows with its bytes).
 
 ``memory`` runs the whole ``lanterna fit`` (fit + tiling + manifest) of a large stack in a child
 process and reports its peak resident set size (``ru_maxrss`` of the child).
@@ -88,6 +92,47 @@ def make_stack(folder: Path, size: int, n: int, grain: float = 0.0) -> Path:
                      for c in range(3)]
             img = img + noise[0].bandjoin(noise[1:])
         img = img.cast("uchar")  # values outside 0–255 clip
+        name = f"img_{i:03d}.jpg"
+        img.copy(interpretation="srgb").jpegsave(str(folder / name), Q=90)
+        rows.append(f"{name} {lx:.6f} {ly:.6f} {lz:.6f}")
+    (folder / "lights.lp").write_text("\n".join(rows) + "\n")
+    return folder / "lights.lp"
+
+
+def make_relit_stack(folder: Path, source: Path, size: int, n: int) -> Path:
+    """Write ``n`` JPEGs (Q90) of a real object relit by its own fitted model, ``size``², and
+    their ``lights.lp``: a stack with a real object's texture, where the procedural one has
+    none (docs/benchmarks.md "Fit throughput on a real object").
+
+    ``source`` is a Relight web-format folder (``../shared/realdata/relight-coin/rbf27``: the
+    coin's RBF basis, fitted by Relight from its 116-light capture).  Each image is the
+    reference renderer's view of it at one of ``n`` of the capture's own lights (spread over
+    them in their order), in 8 bits, mirrored into a ``size``² mosaic (the same texture per
+    pixel: a JPEG's bytes per pixel stay the render's, with no seam).
+    """
+    from lanterna.tiler.formats.relight_web import read_relight
+    from lanterna.tiler.render import render
+
+    layer = read_relight(source)
+    block = {"layerType": layer.layer_type, **layer.fields(), "planes": []}
+    channels = {}
+    for group in layer.groups:
+        t = np.asarray(group.data, np.float32).reshape(*np.shape(group.data)[:2], -1) / 255.0
+        for c, name in enumerate(group.channels):
+            channels[name] = ((t[..., c] - np.float32(group.bias[c]))
+                              * np.float32(group.scale[c])).astype(np.float32)
+    assert layer.pca is not None and layer.pca.lights is not None
+    captured = np.asarray(layer.pca.lights, np.float64).reshape(-1, 3)
+    folder.mkdir(parents=True, exist_ok=True)
+    rows = [str(n)]
+    for i, k in enumerate(np.linspace(0, len(captured) - 1, n).round().astype(int)):
+        lx, ly, lz = captured[k] / np.linalg.norm(captured[k])
+        shot = np.clip(np.rint(render(block, channels, (float(lx), float(ly))) * 255), 0, 255)
+        tile = pyvips.Image.new_from_array(shot.astype(np.uint8))
+        pair = tile.join(tile.fliphor(), "horizontal")
+        quad = pair.join(pair.flipver(), "vertical")
+        img = quad.replicate(-(-size // quad.width), -(-size // quad.height)).crop(0, 0, size,
+                                                                                  size)
         name = f"img_{i:03d}.jpg"
         img.copy(interpretation="srgb").jpegsave(str(folder / name), Q=90)
         rows.append(f"{name} {lx:.6f} {ly:.6f} {lz:.6f}")
@@ -229,11 +274,19 @@ def one(args: argparse.Namespace) -> dict[str, Any]:
 
 
 def compare(args: argparse.Namespace) -> dict[str, Any]:
+    from lanterna.tiler.inputs.lp import read_lp
+
     work = Path(tempfile.mkdtemp(prefix="lanterna-bench-cmp-", dir=args.tmp))
     try:
-        lp = make_stack(work / "shots", args.size, args.lights, args.grain)
+        lp = (Path(args.stack).resolve() if args.stack else
+              make_relit_stack(work / "shots", Path(args.relit), args.size, args.lights)
+              if args.relit else make_stack(work / "shots", args.size, args.lights, args.grain))
+        files, _ = read_lp(lp, lp.parent)
+        first = pyvips.Image.new_from_file(str(files[0]))
+        args.lights, size = len(files), [first.width, first.height]
+        bits = 8 * sum(f.stat().st_size for f in files) / (len(files) * size[0] * size[1])
         held = 10 if args.lights >= 20 else 0
-        sides = {"this": sys.executable, "other": args.python}
+        sides = {"this": sys.executable, **({"other": args.python} if args.python else {})}
         if args.rounds % 2:  # the first fit of a pair is the slower one on this VM
             print("note: an odd --rounds lets one version run first more often in each case; "
                   "use an even number", file=sys.stderr)
@@ -261,8 +314,12 @@ def compare(args: argparse.Namespace) -> dict[str, Any]:
                 "minVsDecode": round(min(x["fit"] / x["decode"] for x in rs), 2),
                 "medianCpuVsDecodeCpu": round(statistics.median(x["fitCpu"] / x["decodeCpu"]
                                                                 for x in rs), 2)}
-        return {"size": args.size, "lights": args.lights, "rounds": args.rounds,
-                "grain": args.grain, "other": args.python, "cases": cases}
+        return {"stack": str(lp) if args.stack else None,
+                "size": None if args.stack else args.size, "imageSize": size,
+                "lights": args.lights, "bitsPerPixel": round(bits, 3), "rounds": args.rounds,
+                "grain": None if args.stack or args.relit else args.grain,
+                "relit": args.relit, "other": args.python,
+                "cases": cases}
     finally:
         shutil.rmtree(work, ignore_errors=True)
 
@@ -300,7 +357,8 @@ def main() -> None:
                                      formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("what", choices=["throughput", "memory", "compare", "one"])
     parser.add_argument("--python", help="compare: the other checkout's interpreter")
-    parser.add_argument("--stack", help="one: the stack's .lp file")
+    parser.add_argument("--stack", help="one, compare: the stack's .lp file (compare: instead "
+                                        "of a synthetic stack)")
     parser.add_argument("--held", type=int, default=0, help="one: holdout_every")
     parser.add_argument("--size", type=int, help="image side (4096 / 32768)")
     parser.add_argument("--lights", type=int, help="images in the stack (24 / 8)")
@@ -308,6 +366,8 @@ def main() -> None:
                         help="models (default: all five / ptm-lrgb for memory)")
     parser.add_argument("--grain", type=float, default=0.0,
                         help="per-shot noise in 8-bit levels (photograph-like entropy; see docs)")
+    parser.add_argument("--relit", help="compare: a Relight folder whose object, relit, makes "
+                                        "the stack (make_relit_stack)")
     parser.add_argument("--rounds", type=int, default=3)
     parser.add_argument("--tmp", default=None, help="scratch folder (needs disk: see docs)")
     parser.add_argument("--json", type=Path, help="write the result here")
@@ -317,8 +377,6 @@ def main() -> None:
         print(json.dumps(one(args)))
         return
     sys.path.insert(0, str(REPO))
-    if args.what == "compare" and not args.python:
-        parser.error("compare needs --python OTHER_CHECKOUT/.venv/bin/python")
     args.size = args.size or (32768 if big else 1024 if args.what == "compare" else 4096)
     args.lights = args.lights or (8 if big else 24)
     args.models = args.models or (["ptm-lrgb"] if big else

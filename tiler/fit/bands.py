@@ -17,6 +17,7 @@ from lanterna.tiler.formats.ptm_model import ptm_weights
 
 from .linear_kernel import linear_band
 from .lrgb_kernel import lrgb_band_compiled
+from .luminance_kernel import luminance_compiled
 from .normals import (
     ITERATIONS,
     RANK_WINDOW,
@@ -54,7 +55,11 @@ def ptm_rgb_band(band: Band, pinv255: npt.NDArray[np.float32]) -> Out:
 
 
 def luminance(band: npt.NDArray[np.floating]) -> npt.NDArray[np.float32]:
-    """``Y`` of every sample of ``band (…, 3)`` in float32 (:data:`LUMINANCE_WEIGHTS`)."""
+    """``Y`` of every sample of ``band (…, 3)`` in float32 (:data:`LUMINANCE_WEIGHTS`):
+    compiled for a contiguous float32 band (:mod:`.luminance_kernel`: the same values)."""
+    weights = np.asarray(LUMINANCE_WEIGHTS, np.float32)
+    if band.dtype == np.float32 and band.flags.c_contiguous and band.shape[-1:] == (3,):
+        return luminance_compiled(band, weights)
     out: npt.NDArray[np.float32] = band @ np.asarray(LUMINANCE_WEIGHTS, np.float32)
     return out
 

@@ -1,6 +1,7 @@
 """The second pass's compiled byte paths against the numpy code they replace, bit for bit: the
 8-/16-bit → float conversion of the sub-bands (:mod:`~lanterna.tiler.fit.unit_kernel` against
-``stack.to_unit``) and the quantisation of PTM/HSH planes (:mod:`~lanterna.tiler.fit.
+``stack.to_unit``), the luminance (:mod:`~lanterna.tiler.fit.luminance_kernel` against
+``band @ weights``) and the quantisation of PTM/HSH planes (:mod:`~lanterna.tiler.fit.
 quantise_kernel` against ``ptm_quantize`` / ``hsh_quantize`` and the plane gather)."""
 
 from __future__ import annotations
@@ -10,6 +11,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
+from lanterna.tiler.fit.bands import LUMINANCE_WEIGHTS, luminance
 from lanterna.tiler.fit.hsh import hsh_quantisation, hsh_quantize
 from lanterna.tiler.fit.ptm import ptm_quantisation, ptm_quantize
 from lanterna.tiler.fit.quantise_kernel import quantise_planes
@@ -87,6 +89,44 @@ def test_hsh_planes_equal_numpy_quantisation() -> None:
     for t in range(9):
         assert np.array_equal(planes[t], q[t].reshape(-1, 3))
     assert len(np.unique(planes)) > 200  # the test exercises the whole byte range
+
+
+def test_compiled_luminance_gives_numpys_bits() -> None:
+    """The compiled luminance of a contiguous float32 band against numpy's ``band @ weights``
+    bit for bit (8-bit levels, arbitrary floats, zeros, ones); other bands go to numpy."""
+    rng = np.random.default_rng(8)
+    levels = rng.integers(0, 256, (5, 40, 3)).astype(np.float32) / np.float32(255)
+    floats = rng.random((3, 1000, 3), dtype=np.float32) * np.float32(4.0)
+    floats[0, :2] = [[0, 0, 0], [1, 1, 1]]
+    weights = np.asarray(LUMINANCE_WEIGHTS, np.float32)
+    for band in (levels, floats):
+        got = luminance(band)
+        assert got.dtype == np.float32 and got.shape == band.shape[:-1]
+        assert np.array_equal(got.view(np.uint32), (band @ weights).view(np.uint32))
+    strided = floats[:, ::3]
+    assert np.array_equal(luminance(strided), strided @ weights)
+    assert luminance(floats.astype(np.float64)).dtype == np.float64  # numpy's, as before
+
+
+@pytest.mark.parametrize("hsh", [True, False])
+def test_planes_of_whole_terms_equal_the_gather_across_chunks(hsh: bool) -> None:
+    """Planes that each hold one term's R, G, B (HSH's, here in a shuffled term order) take the
+    run-per-term path; over several of its chunks, with either formula, the bytes are those of
+    the general gather (channels permuted: the general path) and of numpy's formula."""
+    values = np.random.default_rng(5).normal(0.0, 3.0, (5, 9001, 3)).astype(np.float32)
+    flat = values.reshape(5, -1)
+    quant = hsh_quantisation if hsh else ptm_quantisation
+    scale, bias = quant(flat.min(axis=1) * 0.9, flat.max(axis=1) * 0.9)
+    order = [3, 0, 4, 1]
+    plan = np.array([[(t, c) for c in range(3)] for t in order])
+    planes = quantise_planes(values, scale, bias, plan, hsh=hsh)
+    swapped = quantise_planes(values, scale, bias, plan[:, ::-1], hsh=hsh)  # B, G, R: gathered
+    formula = hsh_quantize if hsh else ptm_quantize
+    q = formula(values, scale.reshape(-1, 1, 1), bias.reshape(-1, 1, 1))
+    for g, t in enumerate(order):
+        assert np.array_equal(planes[g], q[t])
+        assert np.array_equal(swapped[g], q[t][:, ::-1])
+    assert planes.min() == 0 and planes.max() == 255
 
 
 @pytest.mark.parametrize("n", [7, 24, 40])
