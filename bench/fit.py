@@ -4,6 +4,7 @@
     .venv/bin/python bench/fit.py memory [--size 32768] [--lights 8] [--json OUT]
     .venv/bin/python bench/fit.py compare --python OTHER/.venv/bin/python [--size 1024] [--json OUT]
     .venv/bin/python bench/fit.py compare --stack COLLECTION/dirs.lp [--python OTHER] [--json OUT]
+    .venv/bin/python bench/fit.py compare --relit RELIGHT_FOLDER --size 2048 [--python OTHER]
 
 ``throughput`` writes a synthetic multi-light JPEG stack (a bumpy Lambert + Phong object,
 procedural in libvips, so it never exists whole in memory), then times, interleaved in one run
@@ -17,7 +18,8 @@ shared machine: per round and model, each version fits in a fresh process (impor
 kernels loaded first, then the bare decode and the fit timed back to back, with the process's CPU
 time), the two versions alternating; it reports per version the median and the minimum of the
 per-run ratio fit ÷ decode, and the same for CPU time.  ``--stack`` measures a collection on
-disk (a ``.lp`` file and its images: a real capture) instead of a synthetic stack; without
+disk (a ``.lp`` file and its images: a real capture) instead of a synthetic stack, ``--relit`` a
+real object relit by its Relight model (:func:`make_relit_stack`); without
 ``--python`` only this checkout is measured.  Either way the stack's size and JPEG bytes per
 pixel are reported (a JPEG's decode time grows with its bytes).
 

@@ -4,7 +4,7 @@ numpy's ``band @ weights`` runs a three-term dot per sample through its generic 
 0.06 s of a 2048² 24-light normals fit and 0.19 s of a Ward fit (whose whole bands it reads).
 Here one vectorised loop computes the same float32 products and sums in the same order (numba's
 default maths: no fused multiply-add), so the same bits (tests/python/fit/test_fast_paths.py),
-in a third of the time.  On one core: the loop is bound by memory, and split over both cores
+in half the time.  On one core: the loop is bound by memory, and split over both cores
 it waited for the half that shared its core with the decoding thread (0.06 → 0.12 s).
 """
 
