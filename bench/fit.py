@@ -20,7 +20,7 @@ time), the two versions alternating; it reports per version the median and the m
 per-run ratio fit ÷ decode, and the same for CPU time.  ``--stack`` measures a collection on
 disk (a ``.lp`` file and its images: a real capture) instead of a synthetic stack, ``--relit`` a
 real object relit by its Relight model (:func:`make_relit_stack`); without
-``--python`` only this checkout is measured.  Either way the stack's size and JPEG bytes per
+``--python`` only this checkout is measured.  Either way the stack's size and its JPEGs' bits per
 pixel are reported (a JPEG's decode time grows with its bytes).
 
 ``memory`` runs the whole ``lanterna fit`` (fit + tiling + manifest) of a large stack in a child
