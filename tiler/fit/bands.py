@@ -9,6 +9,8 @@ float outputs; the whole-image fitters (:mod:`~lanterna.tiler.fit.models`,
 
 from __future__ import annotations
 
+from typing import cast
+
 import numpy as np
 import numpy.typing as npt
 
@@ -34,6 +36,7 @@ Out = dict[str, npt.NDArray[np.generic]]
 
 #: Rec. 709 luminance weights used by ptmfit (``computepoly.c``).
 LUMINANCE_WEIGHTS = (0.2125, 0.7154, 0.0721)
+_WEIGHTS32: npt.NDArray[np.float32] = np.asarray(LUMINANCE_WEIGHTS, np.float32)
 #: Tukey IRLS steps of the photometric stereo in linear light (none on values as stored).
 IRLS_ITERATIONS = ITERATIONS
 
@@ -57,11 +60,10 @@ def ptm_rgb_band(band: Band, pinv255: npt.NDArray[np.float32]) -> Out:
 def luminance(band: npt.NDArray[np.floating]) -> npt.NDArray[np.float32]:
     """``Y`` of every sample of ``band (…, 3)`` in float32 (:data:`LUMINANCE_WEIGHTS`):
     compiled for a contiguous float32 band (:mod:`.luminance_kernel`: the same values)."""
-    weights = np.asarray(LUMINANCE_WEIGHTS, np.float32)
     if band.dtype == np.float32 and band.flags.c_contiguous and band.shape[-1:] == (3,):
-        return luminance_compiled(band, weights)
-    out: npt.NDArray[np.float32] = band @ np.asarray(LUMINANCE_WEIGHTS, np.float32)
-    return out
+        return luminance_compiled(band, _WEIGHTS32)
+    # numpy's product, as before (of a float64 band, float64)
+    return cast("npt.NDArray[np.float32]", band @ _WEIGHTS32)
 
 
 def ptm_lrgb_band(band: npt.NDArray[np.generic], pinv: npt.NDArray[np.float32], *,

@@ -28,7 +28,8 @@ def _luminance(src: npt.NDArray[np.float32], weights: npt.NDArray[np.float32],
 
 def luminance_compiled(band: npt.NDArray[np.float32], weights: npt.NDArray[np.float32]
                        ) -> npt.NDArray[np.float32]:
-    """``band @ weights`` for a C-contiguous float32 ``band (…, 3)``: ``band.shape[:-1]``."""
+    """``band @ weights`` for a C-contiguous float32 ``band (…, 3)`` and float32 ``weights (3,)``:
+    shape ``band.shape[:-1]``."""
     out = np.empty(band.shape[:-1], np.float32)
-    _luminance(band.reshape(-1), np.ascontiguousarray(weights, np.float32), out.reshape(-1))
+    _luminance(band.reshape(-1), weights, out.reshape(-1))
     return out

@@ -25,13 +25,21 @@ from . import compiled  # noqa: F401 - the threading layer, before any kernel ru
 _CHUNK = 4096  # pixels per parallel task
 
 
+@numba.njit(cache=True, nogil=True, inline="always")
+def _byte(a: np.float32, s: np.float32, b: np.float32, hsh: bool) -> np.uint8:
+    """The stored byte of coefficient ``a`` with its term's ``scale`` ``s`` and ``bias`` ``b``:
+    HSH's formula if ``hsh``, else PTM's (float32 operations in numpy's order), clipped."""
+    k255 = np.float32(255.0)
+    v = np.rint((a - b) / s * k255) if hsh else np.rint(a / s + b)
+    return np.uint8(min(max(v, np.float32(0.0)), k255))
+
+
 @numba.njit(cache=True, parallel=True, nogil=True)
 def _quantise(values: npt.NDArray[np.float32], scale: npt.NDArray[np.float32],
               bias: npt.NDArray[np.float32], plan: npt.NDArray[np.intp], hsh: bool,
               out: npt.NDArray[np.uint8]) -> None:
     p = values.shape[1]
     groups = plan.shape[0]
-    k255 = np.float32(255.0)
     for chunk in numba.prange((p + _CHUNK - 1) // _CHUNK):
         q0, q1 = chunk * _CHUNK, min(p, (chunk + 1) * _CHUNK)
         for g in range(groups):
@@ -39,21 +47,17 @@ def _quantise(values: npt.NDArray[np.float32], scale: npt.NDArray[np.float32],
                 t, c = plan[g, j, 0], plan[g, j, 1]
                 s, b = scale[t], bias[t]
                 for q in range(q0, q1):
-                    a = values[t, q, c]
-                    v = np.rint((a - b) / s * k255) if hsh else np.rint(a / s + b)
-                    out[g, q, j] = np.uint8(min(max(v, np.float32(0.0)), k255))
+                    out[g, q, j] = _byte(values[t, q, c], s, b, hsh)
 
 
 @numba.njit(cache=True, nogil=True, inline="never")
 def _quantise_run(src: npt.NDArray[np.float32], s: np.float32, b: np.float32, hsh: bool,
                   dst: npt.NDArray[np.uint8]) -> None:
-    """``dst[i]`` = byte of ``src[i]`` (:func:`_quantise`'s formula), both contiguous: a call of
+    """``dst[i]`` = :func:`_byte` of ``src[i]``, both contiguous: a call of
     its own, so that the loop sees contiguous arrays and vectorises (inside a ``prange`` body,
     slices of reshaped arrays do not: the same loop there ran 5× slower)."""
-    k255 = np.float32(255.0)
     for i in range(src.shape[0]):
-        v = np.rint((src[i] - b) / s * k255) if hsh else np.rint(src[i] / s + b)
-        dst[i] = np.uint8(min(max(v, np.float32(0.0)), k255))
+        dst[i] = _byte(src[i], s, b, hsh)
 
 
 @numba.njit(cache=True, parallel=True, nogil=True)
