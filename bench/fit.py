@@ -113,16 +113,14 @@ def make_relit_stack(folder: Path, source: Path, size: int, n: int) -> Path:
     pixel: a JPEG's bytes per pixel stay the render's, with no seam).
     """
     from lanterna.tiler.formats.relight_web import read_relight
-    from lanterna.tiler.render import render
+    from lanterna.tiler.render import dequantise, render
 
     layer = read_relight(source)
     block = {"layerType": layer.layer_type, **layer.fields(), "planes": []}
     channels = {}
     for group in layer.groups:
-        t = np.asarray(group.data, np.float32).reshape(*np.shape(group.data)[:2], -1) / 255.0
-        for c, name in enumerate(group.channels):
-            channels[name] = ((t[..., c] - np.float32(group.bias[c]))
-                              * np.float32(group.scale[c])).astype(np.float32)
+        channels.update(dequantise(np.asarray(group.data), group.channels, group.scale,
+                                   group.bias))
     assert layer.pca is not None and layer.pca.lights is not None
     captured = np.asarray(layer.pca.lights, np.float64).reshape(-1, 3)
     folder.mkdir(parents=True, exist_ok=True)

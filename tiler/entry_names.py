@@ -11,7 +11,8 @@ from __future__ import annotations
 import re
 
 KINDS = ("tmp", "v", "link", "old")
-_ENTRY = re.compile(r"^\.(?P<name>.+)\.(?P<kind>" + "|".join(KINDS) + r")-(?P<id>[A-Za-z0-9_]+)$")
+_ID = r"[A-Za-z0-9_]+"
+_ENTRY = re.compile(r"^\.(?P<name>.+)\.(?P<kind>" + "|".join(KINDS) + r")-(?P<id>" + _ID + r")$")
 
 
 def entry_prefix(dataset: str, kind: str) -> str:
@@ -23,7 +24,7 @@ def entry_prefix(dataset: str, kind: str) -> str:
 
 def entry_name(dataset: str, kind: str, entry_id: str) -> str:
     """The name of dataset ``dataset``'s hidden entry of ``kind`` with id ``entry_id``."""
-    if not re.fullmatch(r"[A-Za-z0-9_]+", entry_id):
+    if not re.fullmatch(_ID, entry_id):
         raise ValueError(f"not an entry id: {entry_id!r}")
     return entry_prefix(dataset, kind) + entry_id
 

@@ -11,7 +11,7 @@ from __future__ import annotations
 
 from .filters import box_filter, box_pass, f3, f5
 from .hsh import hsh_basis, hsh_normals
-from .levels import level_channels, level_image
+from .levels import dequantise, level_channels, level_image
 from .modes import (
     MODES,
     PARAMETERS,
@@ -28,7 +28,7 @@ from .shading import linear_to_srgb, luma, post, srgb_to_linear
 
 __all__ = [
     "MODES", "PARAMETERS", "albedo", "applicable_modes", "box_filter", "box_pass", "f3", "f5",
-    "hsh_basis", "hsh_normals", "level_channels", "level_image", "linear_to_srgb", "luma",
-    "normals", "pca_surface", "post", "ptm_normals", "render", "resolve_params",
+    "dequantise", "hsh_basis", "hsh_normals", "level_channels", "level_image", "linear_to_srgb",
+    "luma", "normals", "pca_surface", "post", "ptm_normals", "render", "resolve_params",
     "srgb_to_linear", "surface",
 ]

@@ -3,7 +3,7 @@
 from __future__ import annotations
 
 import json
-from collections.abc import Mapping
+from collections.abc import Mapping, Sequence
 from pathlib import Path
 from typing import Any
 
@@ -91,9 +91,19 @@ def level_channels(dataset_dir: str | Path, layer: Mapping[str, Any], factor: in
                 raise ValueError(f"region {region} is outside the level ({px.shape[1]}x"
                                  f"{px.shape[0]})")
             px = px[y: y + h, x: x + w]
-        t = px.astype(np.float32) / np.float32(255)
-        for k, name in enumerate(plane["channels"]):
-            band = t[..., k] if t.shape[2] > 1 else t[..., 0]
-            out[name] = ((band - np.float32(plane["bias"][k]))
-                         * np.float32(plane["scale"][k])).astype(np.float32)
+        out.update(dequantise(px, plane["channels"], plane["scale"], plane["bias"]))
+    return out
+
+
+def dequantise(px: npt.NDArray[np.uint8], channels: Sequence[str], scale: Sequence[float],
+               bias: Sequence[float]) -> dict[str, F32]:
+    """The channels of one stored image ``px`` (``(h, w, bands)`` or ``(h, w)`` bytes), each
+    ``(t − bias)·scale`` with ``t`` = byte/255, in float32; a 1-channel group reads the first
+    band."""
+    t = px.astype(np.float32) / np.float32(255)
+    t = t.reshape(*t.shape[:2], -1)
+    out: dict[str, F32] = {}
+    for k, name in enumerate(channels):
+        band = t[..., k] if t.shape[2] > 1 else t[..., 0]
+        out[name] = ((band - np.float32(bias[k])) * np.float32(scale[k])).astype(np.float32)
     return out
