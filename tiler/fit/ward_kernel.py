@@ -59,9 +59,7 @@ def _ward(raw: npt.NDArray[np.float32], nrm: npt.NDArray[np.float64],
         best = np.zeros(8 * _LANES)  # SSE, kd (r, g, b), ks (r, g, b), α of the best α so far
         best[:_LANES] = np.inf
         best[7 * _LANES:] = grid[-1]
-        for q in range(lanes):
-            _samples(raw, q0 + q, nrm[q0 + q], lights, half, min_cosi, saturated, samples,
-                     stats, q)
+        _samples(raw, q0, lanes, nrm, lights, half, min_cosi, saturated, samples, stats)
         nearest = np.empty(ng)  # per light, the smallest tan²θh of the lanes
         for i in range(ng):
             row = samples[(i * 6 + 1) * _LANES:(i * 6 + 2) * _LANES]
@@ -94,48 +92,60 @@ def _ward(raw: npt.NDArray[np.float32], nrm: npt.NDArray[np.float64],
 
 
 @numba.njit(cache=True, nogil=True)
-def _samples(raw: npt.NDArray[np.float32], px: int, nrm: npt.NDArray[np.float64],
+def _samples(raw: npt.NDArray[np.float32], q0: int, lanes: int, nrm: npt.NDArray[np.float64],
              lights: npt.NDArray[np.float64], half: npt.NDArray[np.float64], min_cosi: float,
              saturated: float, samples: npt.NDArray[np.float64],
-             stats: npt.NDArray[np.float64], q: int) -> None:
-    """Lane ``q`` of ``samples``: pixel ``px``'s cosi, tan²θh, √(cosi/cosr) and colour per
-    light, an excluded sample as one that adds nothing (tan²θh = ∞, the rest 0); and its
-    ``stats``: Σaa, Σay (r, g, b), Σyy, 1/Σaa, the Lambert-only kd and its chroma."""
+             stats: npt.NDArray[np.float64]) -> None:
+    """Pixels ``q0 …`` as the ``lanes`` first lanes of ``samples``: cosi, tan²θh, √(cosi/cosr)
+    and colour per light, an excluded sample (a padding lane's too) as one that adds nothing
+    (tan²θh = ∞, the rest 0); and their ``stats``: Σaa, Σay (r, g, b), Σyy, 1/Σaa, the
+    Lambert-only kd and its chroma.  Light by light, branch-free over the lanes (so the loop,
+    its square root and division included, vectorises); each lane's sums in light order, an
+    excluded sample adding an exact 0."""
+    L = _LANES
     n = raw.shape[0]
-    nx, ny, nz = nrm[0], nrm[1], nrm[2]
-    cosr = max(nz, 1e-4)
-    saa = say0 = say1 = say2 = yy = 0.0
+    nx, ny, nz = np.zeros(L), np.zeros(L), np.zeros(L)
+    for q in range(lanes):
+        nx[q], ny[q], nz[q] = nrm[q0 + q, 0], nrm[q0 + q, 1], nrm[q0 + q, 2]
+    cosr = np.maximum(nz, 1e-4)
+    col = np.zeros(3 * L)
+    acc = np.zeros(5 * L)  # Σaa, Σay (r, g, b), Σyy
     for i in range(n):
-        cosi = max(lights[i, 0] * nx + lights[i, 1] * ny + lights[i, 2] * nz, 0.0)
-        r, g, b = float(raw[i, px, 0]), float(raw[i, px, 1]), float(raw[i, px, 2])
-        at = i * 6 * _LANES + q
-        if cosi < min_cosi or max(r, max(g, b)) >= saturated:
-            samples[at] = 0.0
-            samples[at + _LANES] = np.inf
-            for c in range(2, 6):
-                samples[at + c * _LANES] = 0.0
-            continue
-        nh = max(half[i, 0] * nx + half[i, 1] * ny + half[i, 2] * nz, 1e-4)
-        samples[at] = cosi
-        samples[at + _LANES] = (1.0 - nh * nh) / (nh * nh)
-        samples[at + 2 * _LANES] = math.sqrt(cosi / cosr)
-        samples[at + 3 * _LANES] = r
-        samples[at + 4 * _LANES] = g
-        samples[at + 5 * _LANES] = b
-        saa += cosi * cosi
-        say0 += cosi * r
-        say1 += cosi * g
-        say2 += cosi * b
-        yy += r * r + g * g + b * b
-    inv_saa = 1.0 / max(saa, 1e-12)
-    kl0, kl1, kl2 = max(say0 * inv_saa, 0.0), max(say1 * inv_saa, 0.0), max(say2 * inv_saa, 0.0)
-    norm = math.sqrt(kl0 * kl0 + kl1 * kl1 + kl2 * kl2)
-    if norm > 1e-6:
-        c0, c1, c2 = kl0 / norm, kl1 / norm, kl2 / norm
-    else:
-        c0 = c1 = c2 = _SQRT3
-    for c, v in enumerate((saa, say0, say1, say2, yy, inv_saa, kl0, kl1, kl2, c0, c1, c2)):
-        stats[c * _LANES + q] = v
+        for q in range(lanes):
+            col[q], col[L + q], col[2 * L + q] = raw[i, q0 + q, 0], raw[i, q0 + q, 1], \
+                raw[i, q0 + q, 2]
+        row = samples[i * 6 * L:(i + 1) * 6 * L]
+        l0, l1, l2 = lights[i, 0], lights[i, 1], lights[i, 2]
+        h0, h1, h2 = half[i, 0], half[i, 1], half[i, 2]
+        for q in range(L):
+            cosi = max(l0 * nx[q] + l1 * ny[q] + l2 * nz[q], 0.0)
+            r, g, b = col[q], col[L + q], col[2 * L + q]
+            out = (cosi < min_cosi) | (max(r, max(g, b)) >= saturated)
+            nh = max(h0 * nx[q] + h1 * ny[q] + h2 * nz[q], 1e-4)
+            a = 0.0 if out else cosi
+            r, g, b = (0.0 if out else r), (0.0 if out else g), (0.0 if out else b)
+            row[q] = a
+            row[L + q] = np.inf if out else (1.0 - nh * nh) / (nh * nh)
+            row[2 * L + q] = 0.0 if out else math.sqrt(cosi / cosr[q])
+            row[3 * L + q], row[4 * L + q], row[5 * L + q] = r, g, b
+            acc[q] += a * a
+            acc[L + q] += a * r
+            acc[2 * L + q] += a * g
+            acc[3 * L + q] += a * b
+            acc[4 * L + q] += r * r + g * g + b * b
+    for q in range(lanes):
+        saa, say0, say1, say2, yy = acc[q], acc[L + q], acc[2 * L + q], acc[3 * L + q], \
+            acc[4 * L + q]
+        inv_saa = 1.0 / max(saa, 1e-12)
+        kl0, kl1, kl2 = max(say0 * inv_saa, 0.0), max(say1 * inv_saa, 0.0), \
+            max(say2 * inv_saa, 0.0)
+        norm = math.sqrt(kl0 * kl0 + kl1 * kl1 + kl2 * kl2)
+        if norm > 1e-6:
+            c0, c1, c2 = kl0 / norm, kl1 / norm, kl2 / norm
+        else:
+            c0 = c1 = c2 = _SQRT3
+        for c, v in enumerate((saa, say0, say1, say2, yy, inv_saa, kl0, kl1, kl2, c0, c1, c2)):
+            stats[c * L + q] = v
 
 
 @numba.njit(cache=True, nogil=True)
