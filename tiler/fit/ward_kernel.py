@@ -63,8 +63,7 @@ def _ward(raw: npt.NDArray[np.float32], nrm: npt.NDArray[np.float64],
         nearest = np.empty(ng)  # per light, the smallest tan²θh of the lanes
         for i in range(ng):
             row = samples[(i * 6 + 1) * _LANES:(i * 6 + 2) * _LANES]
-            row[lanes:] = np.inf
-            if i >= n:
+            if i >= n:  # a padding light (_samples wrote the lights, padding lanes excluded)
                 row[:] = np.inf
             nearest[i] = row.min()
         lobes = np.zeros(_CHAIN * ng * _LANES)
@@ -120,7 +119,7 @@ def _samples(raw: npt.NDArray[np.float32], q0: int, lanes: int, nrm: npt.NDArray
         for q in range(L):
             cosi = max(l0 * nx[q] + l1 * ny[q] + l2 * nz[q], 0.0)
             r, g, b = col[q], col[L + q], col[2 * L + q]
-            out = (cosi < min_cosi) | (max(r, max(g, b)) >= saturated)
+            out = (q >= lanes) | (cosi < min_cosi) | (max(r, max(g, b)) >= saturated)
             nh = max(h0 * nx[q] + h1 * ny[q] + h2 * nz[q], 1e-4)
             a = 0.0 if out else cosi
             r, g, b = (0.0 if out else r), (0.0 if out else g), (0.0 if out else b)
