@@ -35,6 +35,7 @@ _SKIP = 50.0  # exp(-50) ≈ 2e-22: the sample adds nothing to a float64 sum
 _LANES = 32  # pixels solved side by side: one parallel task, one vectorised loop
 _CHAIN = 3  # a lobe is the square of the one this many α before, where the grid allows
 _GROUP = 4  # lights summed per pass over the lanes
+_CHUNK = 64  # blocks per parallel task (their scratch allocated once)
 _STATS = 12  # Σaa, Σay (r, g, b), Σyy, 1/Σaa, Lambert-only kd (r, g, b), its chroma
 
 
@@ -50,47 +51,65 @@ def _ward(raw: npt.NDArray[np.float32], nrm: npt.NDArray[np.float64],
     n, p, nk = raw.shape[0], raw.shape[1], grid.shape[0]
     ng = -(-n // _GROUP) * _GROUP  # lights padded to whole groups
     inv4 = qa * 0.25
-    for block in numba.prange((p + _LANES - 1) // _LANES):
-        q0 = block * _LANES
-        lanes = min(p, q0 + _LANES) - q0
+    blocks = (p + _LANES - 1) // _LANES
+    for chunk in numba.prange((blocks + _CHUNK - 1) // _CHUNK):
+        # a chunk's scratch, allocated once: for each block every part is written before it
+        # is read (zeroing it per block was a memset of 54 KB per 32 pixels)
         samples = np.zeros(ng * 6 * _LANES)  # [light, quantity, lane], padded ones add 0
         stats = np.zeros(_STATS * _LANES)
         sums = np.empty(6 * _LANES)
-        best = np.zeros(8 * _LANES)  # SSE, kd (r, g, b), ks (r, g, b), α of the best α so far
-        best[:_LANES] = np.inf
-        best[7 * _LANES:] = grid[-1]
-        _samples(raw, q0, lanes, nrm, lights, half, min_cosi, saturated, samples, stats)
+        best = np.empty(8 * _LANES)  # SSE, kd (r, g, b), ks (r, g, b), α of the best α so far
         nearest = np.empty(ng)  # per light, the smallest tan²θh of the lanes
-        for i in range(ng):
-            row = samples[(i * 6 + 1) * _LANES:(i * 6 + 2) * _LANES]
-            if i >= n:  # a padding light (_samples wrote the lights, padding lanes excluded)
-                row[:] = np.inf
-            nearest[i] = row.min()
         lobes = np.zeros(_CHAIN * ng * _LANES)
-        for k in range(nk):
-            _sums(samples, nearest, qa[k], inv4[k], lobe_width, sums, lobes,
-                  k % _CHAIN, twice[k])
-            _solve(stats, sums, grid[k], cos_max, min_lobe, best, False)
-            if narrowing[k] and _all_fail(sums, min_lobe):
-                break  # every lane failed the lobe test: each later α is its Lambert again
-        # the best α as its gloss level's, and kd, ks solved again there where ks > 0
         qs = np.empty(_LANES)
-        for q in range(_LANES):
-            level = min(max(np.rint((best[7 * _LANES + q] - lo) / (hi - lo) * 255.0), 0.0),
-                        255.0)
-            alpha = lo + level / 255.0 * (hi - lo)
-            best[7 * _LANES + q] = alpha
-            qs[q] = 1.0 / (alpha * alpha)
-        _sums_at(samples, qs, sums)
-        _solve(stats, sums, 0.0, cos_max, 0, best, True)
-        for q in range(lanes):
-            for c in range(3):
-                kd_out[q0 + q, c] = best[(1 + c) * _LANES + q]
-                ks_out[q0 + q, c] = best[(4 + c) * _LANES + q]
-            al_out[q0 + q] = best[7 * _LANES + q]
+        for block in range(chunk * _CHUNK, min(blocks, (chunk + 1) * _CHUNK)):
+            q0 = block * _LANES
+            lanes = min(p, q0 + _LANES) - q0
+            _samples(raw, q0, lanes, nrm, lights, half, min_cosi, saturated, samples, stats)
+            for i in range(ng):
+                row = samples[(i * 6 + 1) * _LANES:(i * 6 + 2) * _LANES]
+                if i >= n:  # a padding light (_samples wrote the lights, padding lanes excluded)
+                    row[:] = np.inf
+                nearest[i] = row.min()
+            _search(samples, stats, nearest, grid, qa, inv4, twice, narrowing, cos_max,
+                    min_lobe, lobe_width, sums, lobes, best)
+            # the best α as its gloss level's, and kd, ks solved again there where ks > 0
+            for q in range(_LANES):
+                level = min(max(np.rint((best[7 * _LANES + q] - lo) / (hi - lo) * 255.0), 0.0),
+                            255.0)
+                alpha = lo + level / 255.0 * (hi - lo)
+                best[7 * _LANES + q] = alpha
+                qs[q] = 1.0 / (alpha * alpha)
+            _sums_at(samples, qs, sums)
+            _solve(stats, sums, 0.0, cos_max, 0, best, True)
+            for q in range(lanes):
+                for c in range(3):
+                    kd_out[q0 + q, c] = best[(1 + c) * _LANES + q]
+                    ks_out[q0 + q, c] = best[(4 + c) * _LANES + q]
+                al_out[q0 + q] = best[7 * _LANES + q]
 
 
 @numba.njit(cache=True, nogil=True)
+def _search(samples: npt.NDArray[np.float64], stats: npt.NDArray[np.float64],
+            nearest: npt.NDArray[np.float64], grid: npt.NDArray[np.float64],
+            qa: npt.NDArray[np.float64], inv4: npt.NDArray[np.float64],
+            twice: npt.NDArray[np.bool_], narrowing: npt.NDArray[np.bool_], cos_max: float,
+            min_lobe: int, lobe_width: float, sums: npt.NDArray[np.float64],
+            lobes: npt.NDArray[np.float64], best: npt.NDArray[np.float64]) -> None:
+    """The α grid for one block: ``best`` (SSE, kd, ks, α per lane) at the best α.  A lobe
+    slot is read (``twice``) only for a group of lights computed three α before in this block:
+    a group skipped there is past :data:`_SKIP` here too, and skipped again."""
+    best[:_LANES] = np.inf
+    best[_LANES:7 * _LANES] = 0.0
+    best[7 * _LANES:] = grid[-1]
+    for k in range(grid.shape[0]):
+        _sums(samples, nearest, qa[k], inv4[k], lobe_width, sums, lobes, k % _CHAIN, twice[k])
+        _solve(stats, sums, grid[k], cos_max, min_lobe, best, False)
+        if narrowing[k] and _all_fail(sums, min_lobe):
+            break  # every lane failed the lobe test: each later α is its Lambert again
+
+
+@numba.njit(cache=True, nogil=True, error_model="numpy")
 def _samples(raw: npt.NDArray[np.float32], q0: int, lanes: int, nrm: npt.NDArray[np.float64],
              lights: npt.NDArray[np.float64], half: npt.NDArray[np.float64], min_cosi: float,
              saturated: float, samples: npt.NDArray[np.float64],
