@@ -57,13 +57,17 @@ def ptm_rgb_band(band: Band, pinv255: npt.NDArray[np.float32]) -> Out:
     return {"coeffs": _project(pinv255, band)}
 
 
-def luminance(band: npt.NDArray[np.floating]) -> npt.NDArray[np.float32]:
+def luminance(band: npt.NDArray[np.generic], div: float = 1.0) -> npt.NDArray[np.float32]:
     """``Y`` of every sample of ``band (…, 3)`` in float32 (:data:`LUMINANCE_WEIGHTS`):
-    compiled for a contiguous float32 band (:mod:`.luminance_kernel`: the same values)."""
-    if band.dtype == np.float32 and band.flags.c_contiguous and band.shape[-1:] == (3,):
-        return luminance_compiled(band, _WEIGHTS32)
+    compiled for a contiguous float32 band, or 8-/16-bit as decoded (``band / div`` in 0–1,
+    :mod:`.luminance_kernel`: the same values)."""
+    if band.dtype in (np.float32, np.uint8, np.uint16) and band.flags.c_contiguous and \
+            band.shape[-1:] == (3,):
+        return luminance_compiled(band, _WEIGHTS32, 1.0 if band.dtype == np.float32 else div)
+    if div != 1.0:
+        raise ValueError(f"a {band.dtype} band is read as decoded only when contiguous")
     # numpy's product, as before (of a float64 band, float64)
-    return cast("npt.NDArray[np.float32]", band @ _WEIGHTS32)
+    return cast("npt.NDArray[np.float32]", cast("npt.NDArray[np.floating]", band) @ _WEIGHTS32)
 
 
 def ptm_lrgb_band(band: npt.NDArray[np.generic], pinv: npt.NDArray[np.float32], *,
@@ -94,38 +98,43 @@ def hsh_band(band: Band, pinv: npt.NDArray[np.float32]) -> Out:
     return {"coeffs": _project(pinv, band)}
 
 
-def normals_band(band: Band, lights: Lights, *, rank_window: tuple[float, float] = RANK_WINDOW,
-                 shadow: float = SHADOW_FRACTION, iterations: int = 0) -> Out:
+def normals_band(band: npt.NDArray[np.generic], lights: Lights, *,
+                 rank_window: tuple[float, float] = RANK_WINDOW,
+                 shadow: float = SHADOW_FRACTION, iterations: int = 0, div: float = 1.0) -> Out:
     """Robust photometric stereo: ``normals (b, W, 3)`` unit, ``albedo (b, W, 3)``.
 
     The rank-window selection of :func:`lanterna.tiler.fit.models.fit_normals`, refined by
     ``iterations`` steps of Tukey IRLS (:func:`~lanterna.tiler.fit.normals.solve_normals_band`;
-    0 = the rank window alone, the default for values as stored).
+    0 = the rank window alone, the default for values as stored).  ``band / div`` is the 0–1
+    band (``div`` ≠ 1: 8-/16-bit as decoded, contiguous, with the rank window alone).
     """
     n, b, w, _ = band.shape
-    lum = luminance(band).reshape(n, -1)
+    lum = luminance(band, div).reshape(n, -1)
     nrm, albedo = solve_normals_band(lum, band.reshape(n, -1, 3), lights.astype(np.float64),
                                      rank_window=rank_window, shadow=shadow,
-                                     iterations=iterations)
+                                     iterations=iterations, div=div)
     return {"normals": nrm.reshape(b, w, 3), "albedo": albedo.reshape(b, w, 3)}
 
 
-def normals_band_held_out(band: Band, lights: Lights, train: npt.NDArray[np.intp],
-                          held: npt.NDArray[np.intp]) -> tuple[Out, npt.NDArray[np.float64]]:
+def normals_band_held_out(band: npt.NDArray[np.generic], lights: Lights,
+                          train: npt.NDArray[np.intp], held: npt.NDArray[np.intp], div: float = 1.0
+                          ) -> tuple[Out, npt.NDArray[np.float64]]:
     """:func:`normals_band` (the rank window, values as stored) and, in the same pass, the
     squared errors on the ``held`` lights of the same fit of the ``train`` lights
-    (:mod:`.normals_held_out_kernel`); at most ``MAX_LIGHTS`` lights."""
+    (:mod:`.normals_held_out_kernel`); at most ``MAX_LIGHTS`` lights; ``band / div`` in 0–1."""
     n, b, w, _ = band.shape
-    lum = luminance(band).reshape(n, -1)
+    lum = luminance(band, div).reshape(n, -1)
     nrm, albedo, sse = rank_window_normals_held_out(
         lum, band.reshape(n, -1, 3), lights.astype(np.float64), rank_bounds(RANK_WINDOW, n),
-        SHADOW_FRACTION, train, held, rank_bounds(RANK_WINDOW, len(train)))
+        SHADOW_FRACTION, train, held, rank_bounds(RANK_WINDOW, len(train)), div)
     return {"normals": nrm.reshape(b, w, 3), "albedo": albedo.reshape(b, w, 3)}, sse
 
 
-def ward_band(band: Band, lights: Lights, normals: npt.NDArray[np.float32]) -> Out:
-    """Lambert + Ward with the normal fixed: uint8 ``kd``, ``ks``, ``gloss`` (b, W[, 3])."""
-    kd, ks, alpha = fit_ward(band, lights, normals, band_rows=max(1, band.shape[1]))
+def ward_band(band: npt.NDArray[np.generic], lights: Lights, normals: npt.NDArray[np.float32],
+              div: float = 1.0) -> Out:
+    """Lambert + Ward with the normal fixed: uint8 ``kd``, ``ks``, ``gloss`` (b, W[, 3]);
+    ``band / div`` in 0–1."""
+    kd, ks, alpha = fit_ward(band, lights, normals, band_rows=max(1, band.shape[1]), div=div)
     ward = quantize_ward(normals, kd, ks, alpha)
     return {"kd": ward.kd, "ks": ward.ks, "gloss": ward.gloss}
 

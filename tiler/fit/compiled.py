@@ -13,11 +13,14 @@ otherwise (:func:`_wide_vectors`).
 from __future__ import annotations
 
 import os
+from typing import Any
 
 import numba
 import numpy as np
 import numpy.typing as npt
 from llvmlite import binding as llvm
+from numba import types
+from numba.extending import overload
 
 if "NUMBA_THREADING_LAYER" not in os.environ:
     numba.config.THREADING_LAYER = "workqueue"  # type: ignore[attr-defined]
@@ -46,3 +49,17 @@ def kernel_samples(band: npt.NDArray[np.generic]) -> npt.NDArray[np.generic]:
     if band.dtype in (np.uint8, np.uint16):
         return np.ascontiguousarray(band)
     return np.ascontiguousarray(band, np.float32)
+
+
+def unit(x: Any, d: np.float32) -> Any:
+    """A sample in 0–1 inside a kernel: an 8-/16-bit ``x`` as ``float32(x) / d`` (the
+    values of :func:`~lanterna.tiler.inputs.stack.to_unit`, bit for bit), a float one as it is
+    (``d`` unused).  So a kernel reads a band as decoded, or as floats, with the same results."""
+    raise NotImplementedError("unit() is only called inside compiled kernels")
+
+
+@overload(unit, inline="always")
+def _unit(x, d):  # type: ignore[no-untyped-def]  # numba matches it to the stand-in's names
+    if isinstance(x, types.Integer):
+        return lambda x, d: np.float32(x) / d
+    return lambda x, d: x

@@ -18,7 +18,7 @@ from __future__ import annotations
 from collections.abc import Callable, Iterable, Iterator, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Any, Protocol
+from typing import Any, Protocol, cast
 
 import numpy as np
 import numpy.typing as npt
@@ -51,6 +51,7 @@ from .row_bands import (
 )
 from .sample_kernel import report_indices
 from .sinks import Sinks
+from .sub_bands import SubBands
 from .unit_kernel import to_unit_compiled
 
 Lights = npt.NDArray[np.float64]
@@ -87,26 +88,30 @@ class _Solver:
         except ValueError as err:
             raise ValueError(f"{key}: {err}") from None
 
-    def solve(self, band: npt.NDArray[np.float32], keys: Sequence[str] | None = None
-              ) -> dict[str, fb.Out]:
+    def solve(self, band: npt.NDArray[np.generic], keys: Sequence[str] | None = None,
+              div: float = 1.0) -> dict[str, fb.Out]:
         """The float outputs of every requested model (or of ``keys`` among them) for one band
-        (all of this solver's lights)."""
+        (all of this solver's lights): ``band / div`` in 0–1, float32 or (photometric models
+        only, values as stored) 8-/16-bit as decoded."""
         keys = self.keys if keys is None else keys
+        floats = cast("npt.NDArray[np.float32]", band)  # what every model but those takes
+        if div != 1.0 and (self.linear or set(keys) - {"normals", "ward"}):
+            raise ValueError("only the photometric models, as stored, read a band as decoded")
         out: dict[str, fb.Out] = {}
         if "ptm" in keys:
-            out["ptm"] = fb.ptm_rgb_band(band, self.pinv["ptm"])
+            out["ptm"] = fb.ptm_rgb_band(floats, self.pinv["ptm"])
         if "ptm-lrgb" in keys:
-            out["ptm-lrgb"] = fb.ptm_lrgb_band(band, self.pinv["ptm-lrgb"])
+            out["ptm-lrgb"] = fb.ptm_lrgb_band(floats, self.pinv["ptm-lrgb"])
         if "hsh" in keys:
-            out["hsh"] = fb.hsh_band(band, self.pinv["hsh"])
+            out["hsh"] = fb.hsh_band(floats, self.pinv["hsh"])
         if {"normals", "ward"} & set(keys):
-            physical = srgb_to_linear(band) if self.linear else band
+            physical = srgb_to_linear(floats) if self.linear else band
             nrm = fb.normals_band(physical, self.lights,
-                                  iterations=fb.IRLS_ITERATIONS if self.linear else 0)
+                                  iterations=fb.IRLS_ITERATIONS if self.linear else 0, div=div)
             out["normals"] = nrm
             if "ward" in keys:
                 normals = np.asarray(nrm["normals"], np.float32)
-                out["ward"] = {**fb.ward_band(physical, self.lights, normals),
+                out["ward"] = {**fb.ward_band(physical, self.lights, normals, div),
                                "normals": normals}
         return out
 
@@ -144,14 +149,14 @@ class _Step:
     #: the sampled twin's pixels fitted together, up to this many (0: each band's alone, as a
     #: Dask worker must: its bands' results come back one by one); the rest by :meth:`flush`
     twin_batch: int = 0
-    #: the float sub-band buffer, made where the step runs (never pickled)
-    _unit: npt.NDArray[np.float32] | None = field(default=None, repr=False, compare=False)
+    #: the sub-band buffers, made where the step runs (never pickled)
+    _buffers: SubBands = field(default_factory=SubBands, repr=False, compare=False)
     #: the sampled twin's pixels not fitted yet (with ``twin_batch``)
     _pending: list[npt.NDArray[np.float32]] = field(default_factory=list, repr=False,
                                                      compare=False)
 
     def __getstate__(self) -> dict[str, Any]:
-        return {**self.__dict__, "_unit": None, "_pending": []}
+        return {**self.__dict__, "_buffers": SubBands(), "_pending": []}
 
     def __call__(self, band: npt.NDArray[np.generic], div: float = 1.0, y0: int = 0
                  ) -> _StepResult:
@@ -176,22 +181,27 @@ class _Step:
             twins: list[npt.NDArray[np.float32]] = []
             fused = self.loo is not None and rest == ["normals"] and not self.full.linear and \
                 len(self.full.lights) <= MAX_LIGHTS and not sampled
-            budget = WARD_BAND_BUDGET if "ward" in rest else SUB_BAND_BUDGET
-            for r0, piece in self._floats(band, div, sub_band_rows(band.shape[0], w, budget)):
+            for r0, piece, d in self._pieces(band, div, rest, fused or sampled):
                 if fused:  # the fit and its leave-one-out twin in one pass (the layer
                     # is made even for a report alone: it is a small part of the pass)
                     out, err = fb.normals_band_held_out(piece, self.full.lights, self.train,
-                                                        self.held)
+                                                        self.held, d)
                     sse["normals"] += err
                     parts.append({"normals": out} if self.layers else {})
                     continue
-                outs = self.full.solve(piece, rest) if self.layers else {}
+                outs = self.full.solve(piece, rest, d) if self.layers else {}
                 if sampled:  # the twin's pixels of these rows, fitted in batches
                     idx = report_indices(y0 + r0, piece.shape[1], w, self.report_share)
                     flat = np.ascontiguousarray(piece).reshape(piece.shape[0], -1, 3)
-                    twins.append(np.take(flat, idx, axis=1))
+                    twin = np.take(flat, idx, axis=1)
+                    if d != 1.0:  # as decoded: the float twin's values
+                        unit = np.empty(twin.shape, np.float32)
+                        to_unit_compiled(twin, d, unit)
+                        twin = unit
+                    twins.append(twin)
                 elif self.loo is not None:
-                    for k, err in self._held_out(piece, self.loo, rest).items():
+                    floats = cast("npt.NDArray[np.float32]", piece)  # _pieces: floats here
+                    for k, err in self._held_out(floats, self.loo, rest).items():
                         sse[k] += err
                 parts.append(outs)
             if sampled and self.loo is not None:
@@ -256,27 +266,25 @@ class _Step:
             outs[k] = {"coeffsByTerm": coeffs.reshape(-1, b, w, c), "lo": lo, "hi": hi}
         return outs
 
-    def _floats(self, band: npt.NDArray[np.generic], div: float, rows: int
-                ) -> Iterator[tuple[int, npt.NDArray[np.float32]]]:
-        """``band`` as float32 0–1 sub-bands of ``rows`` rows (with their first row in
-        ``band``), each valid until the next is asked for: views of a float band, or converted
-        into one reused buffer (a fresh 4 MB array each time costs a page fault per 4 KB page,
-        as much as the conversion itself; no solver keeps a view of its input)."""
-        n, b, w, c = band.shape
-        rows = max(1, min(rows, b))
-        native = band.dtype != np.float32 or div != 1.0
-        if native and (self._unit is None or self._unit.size < n * rows * w * c):
-            self._unit = np.empty(n * rows * w * c, np.float32)
-        for r0 in range(0, b, rows):
-            r1 = min(b, r0 + rows)
-            if not native:
-                yield r0, np.asarray(band[:, r0:r1], np.float32)
-                continue
-            assert self._unit is not None
-            piece = self._unit[:n * (r1 - r0) * w * c].reshape(n, r1 - r0, w, c)
-            for i in range(n):
-                to_unit_compiled(band[i, r0:r1], None if div == 1.0 else div, piece[i])
-            yield r0, piece
+    def _pieces(self, band: npt.NDArray[np.generic], div: float, keys: Sequence[str],
+                twin: bool) -> Iterator[tuple[int, npt.NDArray[np.generic], float]]:
+        """The photometric models' pieces of ``band``: ``(r0, piece, d)`` with ``piece / d`` in
+        0–1, of the rows a float sub-band of the budget holds.  An 8-/16-bit band's pieces stay
+        as decoded (their kernels divide where they read, with the same results; a piece short
+        of the whole band copied into one reused contiguous buffer, a quarter of the float
+        one's bytes at 8 bits) for a Ward fit of the values as stored whose report, if any,
+        is sampled (:meth:`_held_out` refits a float copy); else they are float sub-bands
+        (:class:`~.sub_bands.SubBands`).  The normals alone gained nothing from it (their
+        float sub-bands are cache-sized, and the conversion is a small part of their pass:
+        docs/fitting.md "Speed, ninth pass")."""
+        n, _, w, _ = band.shape
+        rows = sub_band_rows(n, w, WARD_BAND_BUDGET if "ward" in keys else SUB_BAND_BUDGET)
+        if not (band.dtype in (np.uint8, np.uint16) and div != 1.0 and not self.full.linear
+                and (self.loo is None or twin) and "ward" in keys):
+            for r0, piece in self._buffers.floats(band, div, rows):
+                yield r0, piece, 1.0
+            return
+        yield from self._buffers.as_decoded(band, div, rows)
 
     def _held_out(self, band: npt.NDArray[np.float32], loo: _Solver, keys: Sequence[str]
                   ) -> dict[str, npt.NDArray[np.float64]]:

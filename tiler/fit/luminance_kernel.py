@@ -14,22 +14,25 @@ import numba
 import numpy as np
 import numpy.typing as npt
 
-from . import compiled  # noqa: F401 - the threading layer, before any kernel runs
+from .compiled import unit
 
 
 @numba.njit(cache=True, nogil=True)
-def _luminance(src: npt.NDArray[np.float32], weights: npt.NDArray[np.float32],
-               dst: npt.NDArray[np.float32]) -> None:
-    """``dst[q]`` = luminance of ``src[3q:3q + 3]``, both contiguous."""
+def _luminance(src: npt.NDArray[np.generic], weights: npt.NDArray[np.float32],
+               dst: npt.NDArray[np.float32], d: np.float32) -> None:
+    """``dst[q]`` = luminance of ``src[3q:3q + 3]`` (each sample :func:`~.compiled.unit`),
+    both contiguous."""
     w0, w1, w2 = weights[0], weights[1], weights[2]
     for q in range(dst.shape[0]):
-        dst[q] = src[3 * q] * w0 + src[3 * q + 1] * w1 + src[3 * q + 2] * w2
+        dst[q] = unit(src[3 * q], d) * w0 + unit(src[3 * q + 1], d) * w1 + \
+            unit(src[3 * q + 2], d) * w2
 
 
-def luminance_compiled(band: npt.NDArray[np.float32], weights: npt.NDArray[np.float32]
-                       ) -> npt.NDArray[np.float32]:
-    """``band @ weights`` for a C-contiguous float32 ``band (…, 3)`` and float32 ``weights (3,)``:
-    shape ``band.shape[:-1]``."""
+def luminance_compiled(band: npt.NDArray[np.generic], weights: npt.NDArray[np.float32],
+                       div: float = 1.0) -> npt.NDArray[np.float32]:
+    """``(band / div) @ weights`` for a C-contiguous ``band (…, 3)``, float32 (``div`` 1) or
+    8-/16-bit as decoded (``div`` 255/65535: each sample ``float32(x) / div`` first, the values
+    of the float band), and float32 ``weights (3,)``: shape ``band.shape[:-1]``."""
     out = np.empty(band.shape[:-1], np.float32)
-    _luminance(band.reshape(-1), weights, out.reshape(-1))
+    _luminance(band.reshape(-1), weights, out.reshape(-1), np.float32(div))
     return out

@@ -35,13 +35,13 @@ _MIN_CONDITION = 1e-8  # det(A) / (trace(A)/3)^3 below this: too few directions 
 _UPPER = ((0, 0), (1, 1), (2, 2), (0, 1), (0, 2), (1, 2))
 
 
-def solve_normals_band(lum: npt.NDArray[np.floating], colour: npt.NDArray[np.floating],
+def solve_normals_band(lum: npt.NDArray[np.floating], colour: npt.NDArray[np.generic],
                        lights: F64, *,
                        rank_window: tuple[float, float] = RANK_WINDOW,
                        shadow: float = SHADOW_FRACTION, iterations: int = ITERATIONS,
                        estimator: Estimator = "tukey", tuning: float | None = None,
                        tol: float = 1e-4, scale_floor: float = 1e-3,
-                       compiled: bool = True) -> tuple[F32, F32]:
+                       compiled: bool = True, div: float = 1.0) -> tuple[F32, F32]:
     r"""Estimate normals and Lambert albedo by robust photometric stereo (Woodham + IRLS).
 
     Per pixel, with luminance samples :math:`Y_i` under unit lights :math:`l_i`:
@@ -66,7 +66,8 @@ def solve_normals_band(lum: npt.NDArray[np.floating], colour: npt.NDArray[np.flo
 
     ``iterations=0`` is exactly the 0/1-weighted rank-window fit, run by the compiled kernel
     (:mod:`.normals_kernel`, to float32 rounding of this numpy reference) unless
-    ``compiled=False``.
+    ``compiled=False``; that kernel also reads ``colour`` 8-/16-bit as decoded, ``colour / div``
+    in 0–1 (``div`` 255/65535; the same results).
 
     Parameters
     ----------
@@ -109,7 +110,9 @@ def solve_normals_band(lum: npt.NDArray[np.floating], colour: npt.NDArray[np.flo
     n, p = lum.shape
     lo, hi = rank_bounds(rank_window, n)
     if compiled and iterations == 0:
-        return rank_window_normals(lum, colour, lights, lo, hi, shadow)
+        return rank_window_normals(lum, colour, lights, lo, hi, shadow, div)
+    if div != 1.0:
+        raise ValueError("colour as decoded (div != 1) needs the compiled rank window")
     c = TUNING[estimator] if tuning is None else float(tuning)
     normals = np.empty((p, 3), np.float32)
     albedo = np.empty((p, 3), np.float32)
@@ -142,7 +145,7 @@ def check_lights(lights: npt.ArrayLike) -> F64:
     return lf
 
 
-def _check(lum: npt.NDArray[np.floating], colour: npt.NDArray[np.floating], lights: F64,
+def _check(lum: npt.NDArray[np.floating], colour: npt.NDArray[np.generic], lights: F64,
            rank_window: tuple[float, float], shadow: float, iterations: int, estimator: str,
            tuning: float | None, tol: float, scale_floor: float) -> F64:
     """Validate the arguments; return the lights as float64."""

@@ -17,7 +17,7 @@ import numba
 import numpy as np
 import numpy.typing as npt
 
-from . import compiled  # noqa: F401 - the threading layer, before any kernel runs
+from .compiled import unit
 from .normals_kernel import MAX_COUNTED, fit_chunk, fit_rows, window
 
 _CHUNK = 512  # pixels per parallel task
@@ -26,17 +26,17 @@ MAX_LIGHTS = MAX_COUNTED
 
 
 @numba.njit(cache=True, parallel=True, nogil=True)
-def _fused(lum: npt.NDArray[np.floating], colour: npt.NDArray[np.floating],
+def _fused(lum: npt.NDArray[np.floating], colour: npt.NDArray[np.generic],
            lights: npt.NDArray[np.float64], lo: int, hi: int, shadow: float,
            train: npt.NDArray[np.intp], held: npt.NDArray[np.intp], lo_t: int, hi_t: int,
            normals: npt.NDArray[np.float32], albedo: npt.NDArray[np.float32],
-           sse: npt.NDArray[np.float64]) -> None:
+           sse: npt.NDArray[np.float64], d: np.float32) -> None:
     p = lum.shape[1]
     nt, h = train.shape[0], held.shape[0]
     for chunk in numba.prange((p + _CHUNK - 1) // _CHUNK):
         q0, q1 = chunk * _CHUNK, min(p, (chunk + 1) * _CHUNK)
         m = q1 - q0
-        y, rank = fit_chunk(lum, colour, lights, lo, hi, shadow, normals, albedo, q0, q1)
+        y, rank = fit_chunk(lum, colour, lights, lo, hi, shadow, normals, albedo, q0, q1, d)
         rank_t = np.empty((nt, m), np.int32)
         for j in range(nt):
             i = train[j]
@@ -51,7 +51,7 @@ def _fused(lum: npt.NDArray[np.floating], colour: npt.NDArray[np.floating],
                     for q in range(m):
                         rt[q] -= np.int32(yh[q] < yi[q])
         keep_t = window(y, rank_t, train, lo_t, hi_t, shadow)
-        nrm_t, alb_t = fit_rows(y, keep_t, train, lights, colour, q0)
+        nrm_t, alb_t = fit_rows(y, keep_t, train, lights, colour, q0, d)
         for jh in range(h):
             i = held[jh]
             lx, ly = np.float32(lights[i, 0]), np.float32(lights[i, 1])
@@ -64,21 +64,23 @@ def _fused(lum: npt.NDArray[np.floating], colour: npt.NDArray[np.floating],
                 for c in range(3):
                     pred = min(max(np.float32(alb_t[c, q]) * shade, np.float32(0.0)),
                                np.float32(1.0))
-                    d = float(pred - np.float32(src[q, c]))
-                    acc += d * d
+                    e = float(pred - np.float32(unit(src[q, c], d)))
+                    acc += e * e
             sse[chunk, jh] = acc
 
 
-def rank_window_normals_held_out(lum: npt.NDArray[np.floating], colour: npt.NDArray[np.floating],
+def rank_window_normals_held_out(lum: npt.NDArray[np.floating], colour: npt.NDArray[np.generic],
                                  lights: npt.NDArray[np.float64], window_lo_hi: tuple[int, int],
                                  shadow: float, train: npt.NDArray[np.intp],
-                                 held: npt.NDArray[np.intp], train_lo_hi: tuple[int, int]
+                                 held: npt.NDArray[np.intp], train_lo_hi: tuple[int, int],
+                                 div: float = 1.0
                                  ) -> tuple[npt.NDArray[np.float32], npt.NDArray[np.float32],
                                             npt.NDArray[np.float64]]:
     """Normals and albedo ``(P, 3)`` float32 of ``lum (N, P)``, ``colour (N, P, 3)`` 0–1 under
     ``lights (N, 3)`` (ranks ``window_lo_hi``), and the squared errors ``(h,)`` on the
     ``held`` lights of the fit of the ``train`` lights (ranks ``train_lo_hi`` among them);
-    ``train`` and ``held`` ascending, at most :data:`MAX_LIGHTS` lights."""
+    ``train`` and ``held`` ascending, at most :data:`MAX_LIGHTS` lights; ``colour`` may be 8-/16-bit
+    as decoded, with ``div`` 255/65535 (the results of the float ``colour / div``)."""
     n, p = lum.shape
     if n > MAX_LIGHTS:
         raise ValueError(f"the fused pass takes at most {MAX_LIGHTS} lights, not {n}")
@@ -89,6 +91,6 @@ def rank_window_normals_held_out(lum: npt.NDArray[np.floating], colour: npt.NDAr
            np.ascontiguousarray(lights, np.float64), window_lo_hi[0], window_lo_hi[1],
            float(shadow), np.ascontiguousarray(train, np.intp),
            np.ascontiguousarray(held, np.intp), train_lo_hi[0], train_lo_hi[1], normals, albedo,
-           sse)
+           sse, np.float32(div))
     out: npt.NDArray[np.float64] = sse.sum(axis=0)
     return normals, albedo, out

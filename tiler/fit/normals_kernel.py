@@ -21,7 +21,7 @@ import numba
 import numpy as np
 import numpy.typing as npt
 
-from . import compiled  # noqa: F401 - the threading layer, before any kernel runs
+from .compiled import unit
 
 _RIDGE = 1e-9
 _CHUNK = 512  # pixels per parallel task
@@ -31,14 +31,15 @@ MAX_COUNTED = 64
 
 
 @numba.njit(cache=True, parallel=True, nogil=True)
-def _rank_window(lum: npt.NDArray[np.floating], colour: npt.NDArray[np.floating],
+def _rank_window(lum: npt.NDArray[np.floating], colour: npt.NDArray[np.generic],
                  lights: npt.NDArray[np.float64], lo: int, hi: int, shadow: float,
-                 normals: npt.NDArray[np.float32], albedo: npt.NDArray[np.float32]) -> None:
+                 normals: npt.NDArray[np.float32], albedo: npt.NDArray[np.float32],
+                 d: np.float32) -> None:
     n, p = lum.shape
     if n <= MAX_COUNTED:  # ranks by counting, vectorised across the chunk's pixels
         for chunk in numba.prange((p + _CHUNK - 1) // _CHUNK):
             q0, q1 = chunk * _CHUNK, min(p, (chunk + 1) * _CHUNK)
-            fit_chunk(lum, colour, lights, lo, hi, shadow, normals, albedo, q0, q1)
+            fit_chunk(lum, colour, lights, lo, hi, shadow, normals, albedo, q0, q1, d)
         return
     for chunk in numba.prange((p + _CHUNK - 1) // _CHUNK):
         q0, q1 = chunk * _CHUNK, min(p, (chunk + 1) * _CHUNK)
@@ -49,14 +50,15 @@ def _rank_window(lum: npt.NDArray[np.floating], colour: npt.NDArray[np.floating]
                 ys[q - q0, i] = lum[i, q]
         keep = np.empty(n, np.bool_)
         for q in range(q0, q1):
-            _pixel(ys[q - q0], colour, lights, lo, hi, shadow, normals, albedo, q, keep)
+            _pixel(ys[q - q0], colour, lights, lo, hi, shadow, normals, albedo, q, keep, d)
 
 
 @numba.njit(cache=True, nogil=True)
-def fit_chunk(lum: npt.NDArray[np.floating], colour: npt.NDArray[np.floating],
-           lights: npt.NDArray[np.float64], lo: int, hi: int, shadow: float,
-           normals: npt.NDArray[np.float32], albedo: npt.NDArray[np.float32],
-           q0: int, q1: int) -> tuple[npt.NDArray[np.generic], npt.NDArray[np.int32]]:
+def fit_chunk(lum: npt.NDArray[np.floating], colour: npt.NDArray[np.generic],
+              lights: npt.NDArray[np.float64], lo: int, hi: int, shadow: float,
+              normals: npt.NDArray[np.float32], albedo: npt.NDArray[np.float32],
+              q0: int, q1: int, d: np.float32
+              ) -> tuple[npt.NDArray[np.generic], npt.NDArray[np.int32]]:
     """Pixels ``q0:q1`` (at most :data:`MAX_COUNTED` lights): :func:`_select` and
     :func:`_pixel`'s arithmetic with every loop over the pixels innermost, so it runs on
     vectors of pixels.  Each pixel's sums add the same terms in the same order (a sample left
@@ -65,7 +67,7 @@ def fit_chunk(lum: npt.NDArray[np.floating], colour: npt.NDArray[np.floating],
     y = chunk_luminance(lum, q0, q1)
     rows = np.arange(lum.shape[0])
     rank = ranks(y)
-    nrm, alb = fit_rows(y, window(y, rank, rows, lo, hi, shadow), rows, lights, colour, q0)
+    nrm, alb = fit_rows(y, window(y, rank, rows, lo, hi, shadow), rows, lights, colour, q0, d)
     for q in range(q1 - q0):
         for c in range(3):
             normals[q0 + q, c] = nrm[c, q]
@@ -138,10 +140,11 @@ def window(y: npt.NDArray[np.generic], rank: npt.NDArray[np.int32],
 @numba.njit(cache=True, nogil=True)
 def fit_rows(y: npt.NDArray[np.generic], keep: npt.NDArray[np.bool_],
              rows: npt.NDArray[np.intp], lights: npt.NDArray[np.float64],
-             colour: npt.NDArray[np.floating], q0: int
+             colour: npt.NDArray[np.generic], q0: int, d: np.float32
              ) -> tuple[npt.NDArray[np.float64], npt.NDArray[np.float64]]:
     """Normals and albedo ``(3, m)`` of the kept samples of the lights ``rows`` (summed in
-    their order); ``colour (N, P, 3)`` read from pixel ``q0``."""
+    their order); ``colour (N, P, 3)`` read from pixel ``q0`` (each sample
+    :func:`~.compiled.unit` of ``d``)."""
     n, m = rows.shape[0], y.shape[1]
     a = np.zeros((9, m))  # a00 a11 a22 a01 a02 a12 b0 b1 b2
     for j in range(n):
@@ -175,9 +178,9 @@ def fit_rows(y: npt.NDArray[np.generic], keep: npt.NDArray[np.bool_],
             k = kj[q]
             s = max(0.0, nrm[0, q] * lx + nrm[1, q] * ly + nrm[2, q] * lz) if k else 0.0
             r[0, q] += s * s
-            r[1, q] += s * c[q, 0] if k else 0.0
-            r[2, q] += s * c[q, 1] if k else 0.0
-            r[3, q] += s * c[q, 2] if k else 0.0
+            r[1, q] += s * unit(c[q, 0], d) if k else 0.0
+            r[2, q] += s * unit(c[q, 1], d) if k else 0.0
+            r[3, q] += s * unit(c[q, 2], d) if k else 0.0
     alb = np.empty((3, m))
     for q in range(m):
         den = max(r[0, q], 1e-12)
@@ -246,10 +249,10 @@ def _select(y: npt.NDArray[np.float64], lo: int, hi: int, shadow: float,
 
 
 @numba.njit(cache=True, nogil=True)
-def _pixel(y: npt.NDArray[np.float64], colour: npt.NDArray[np.floating],
+def _pixel(y: npt.NDArray[np.float64], colour: npt.NDArray[np.generic],
            lights: npt.NDArray[np.float64], lo: int, hi: int, shadow: float,
            normals: npt.NDArray[np.float32], albedo: npt.NDArray[np.float32], q: int,
-           keep: npt.NDArray[np.bool_]) -> None:
+           keep: npt.NDArray[np.bool_], d: np.float32) -> None:
     """Pixel ``q``: its luminances ``y (N,)``; writes row ``q`` of the outputs."""
     n = y.shape[0]
     _select(y, lo, hi, shadow, keep)
@@ -276,22 +279,25 @@ def _pixel(y: npt.NDArray[np.float64], colour: npt.NDArray[np.floating],
         if keep[i]:
             s = max(0.0, nx * lights[i, 0] + ny * lights[i, 1] + nz * lights[i, 2])
             den += s * s
-            r0 += s * colour[i, q, 0]
-            r1 += s * colour[i, q, 1]
-            r2 += s * colour[i, q, 2]
+            r0 += s * unit(colour[i, q, 0], d)
+            r1 += s * unit(colour[i, q, 1], d)
+            r2 += s * unit(colour[i, q, 2], d)
     den = max(den, 1e-12)
     albedo[q, 0], albedo[q, 1], albedo[q, 2] = r0 / den, r1 / den, r2 / den
 
 
-def rank_window_normals(lum: npt.NDArray[np.floating], colour: npt.NDArray[np.floating],
-                        lights: npt.NDArray[np.float64], lo: int, hi: int, shadow: float
+def rank_window_normals(lum: npt.NDArray[np.floating], colour: npt.NDArray[np.generic],
+                        lights: npt.NDArray[np.float64], lo: int, hi: int, shadow: float,
+                        div: float = 1.0
                         ) -> tuple[npt.NDArray[np.float32], npt.NDArray[np.float32]]:
     """Normals and albedo ``(P, 3)`` float32 of ``lum (N, P)``, ``colour (N, P, 3)`` (float32
-    or float64: compiled for each) under unit ``lights (N, 3)``, from the samples ranked
-    ``[lo, hi)`` and brighter than ``shadow`` × the pixel's maximum (checked by the caller)."""
+    or float64, or 8-/16-bit as decoded with ``div`` 255/65535: compiled for each) under unit
+    ``lights (N, 3)``, from the samples ranked ``[lo, hi)`` and brighter than ``shadow`` × the
+    pixel's maximum (checked by the caller)."""
     p = lum.shape[1]
     normals = np.empty((p, 3), np.float32)
     albedo = np.empty((p, 3), np.float32)
     _rank_window(np.ascontiguousarray(lum), np.ascontiguousarray(colour),
-                 np.ascontiguousarray(lights, np.float64), lo, hi, float(shadow), normals, albedo)
+                 np.ascontiguousarray(lights, np.float64), lo, hi, float(shadow), normals, albedo,
+                 np.float32(div))
     return normals, albedo

@@ -87,10 +87,10 @@ class Ward:
         return out
 
 
-def fit_ward(stack: npt.NDArray[np.floating] | StackReader, lights: npt.NDArray[np.floating],
+def fit_ward(stack: npt.NDArray[np.generic] | StackReader, lights: npt.NDArray[np.floating],
              normals: npt.NDArray[np.floating], *, alphas: npt.NDArray[np.float64] | None = None,
              gloss_limits: tuple[float, float] = GLOSS_LIMITS, band_rows: int = 32,
-             compiled: bool = True
+             compiled: bool = True, div: float = 1.0
              ) -> tuple[npt.NDArray[np.float32], npt.NDArray[np.float32], npt.NDArray[np.float32]]:
     """Fit Lambert + isotropic Ward per pixel with the normal fixed.
 
@@ -123,7 +123,9 @@ def fit_ward(stack: npt.NDArray[np.floating] | StackReader, lights: npt.NDArray[
     best α is then moved to its gloss level's α, and kd, ks solved again there where the pixel
     has a specular term, so the maps fit the α the viewer reads.  Rows are processed in bands
     of ``band_rows``, so temporaries are ``O(N·band·W)``.
-    ``compiled`` runs the Numba kernel (:mod:`.ward_kernel`), else the numpy reference.
+    ``compiled`` runs the Numba kernel (:mod:`.ward_kernel`), else the numpy reference.  With
+    ``div`` ≠ 1 (compiled only), ``stack`` is 8-/16-bit as decoded: ``stack / div`` is the 0–1
+    stack, with the same results.
     """
     n, h, w, _ = stack.shape
     if lights.shape != (n, 3) or normals.shape != (h, w, 3):
@@ -137,10 +139,12 @@ def fit_ward(stack: npt.NDArray[np.floating] | StackReader, lights: npt.NDArray[
         nrm = np.asarray(normals[y0:y0 + band_rows], np.float64)
         b = nrm.shape[0]
         maps: tuple[npt.NDArray[np.floating], ...]
-        if compiled:  # (N, b, W, 3) as float32, the kernel's input
-            maps = ward_band_compiled(np.asarray(stack[:, y0:y0 + b], np.float32), nrm, lf, grid,
-                                      gloss_limits)
+        if compiled:  # (N, b, W, 3) as decoded or float32, the kernel's input
+            maps = ward_band_compiled(np.asarray(stack[:, y0:y0 + b]), nrm, lf, grid,
+                                      gloss_limits, div)
         else:
+            if div != 1.0:
+                raise ValueError("the numpy reference takes a float stack")
             maps = solve_ward_band(np.asarray(stack[:, y0:y0 + b], np.float64), nrm, lf, grid,
                                    gloss_limits)
         kd_out[y0:y0 + b], ks_out[y0:y0 + b], al_out[y0:y0 + b] = maps

@@ -26,8 +26,9 @@ import numba
 import numpy as np
 import numpy.typing as npt
 
-from . import compiled  # noqa: F401 - the threading layer, before any kernel runs
+from . import compiled
 from . import ward_solve as ws
+from .compiled import unit
 from .exp_kernel import exp_neg
 
 _SQRT3 = 1.0 / math.sqrt(3.0)
@@ -40,15 +41,16 @@ _STATS = 12  # Σaa, Σay (r, g, b), Σyy, 1/Σaa, Lambert-only kd (r, g, b), it
 
 
 @numba.njit(cache=True, parallel=True, nogil=True)
-def _ward(raw: npt.NDArray[np.float32], nrm: npt.NDArray[np.float64],
+def _ward(raw: npt.NDArray[np.generic], nrm: npt.NDArray[np.float64],
           lights: npt.NDArray[np.float64], half: npt.NDArray[np.float64],
           grid: npt.NDArray[np.float64], qa: npt.NDArray[np.float64],
           twice: npt.NDArray[np.bool_], narrowing: npt.NDArray[np.bool_], min_cosi: float,
           saturated: float, cos_max: float,
           min_lobe: int, lobe_width: float, lo: float, hi: float,
           kd_out: npt.NDArray[np.float32],
-          ks_out: npt.NDArray[np.float32], al_out: npt.NDArray[np.float32]) -> None:
-    n, p, nk = raw.shape[0], raw.shape[1], grid.shape[0]
+          ks_out: npt.NDArray[np.float32], al_out: npt.NDArray[np.float32], d: np.float32
+          ) -> None:
+    n, p = raw.shape[0], raw.shape[1]
     ng = -(-n // _GROUP) * _GROUP  # lights padded to whole groups
     inv4 = qa * 0.25
     blocks = (p + _LANES - 1) // _LANES
@@ -65,7 +67,7 @@ def _ward(raw: npt.NDArray[np.float32], nrm: npt.NDArray[np.float64],
         for block in range(chunk * _CHUNK, min(blocks, (chunk + 1) * _CHUNK)):
             q0 = block * _LANES
             lanes = min(p, q0 + _LANES) - q0
-            _samples(raw, q0, lanes, nrm, lights, half, min_cosi, saturated, samples, stats)
+            _samples(raw, q0, lanes, nrm, lights, half, min_cosi, saturated, samples, stats, d)
             for i in range(ng):
                 row = samples[(i * 6 + 1) * _LANES:(i * 6 + 2) * _LANES]
                 if i >= n:  # a padding light (_samples wrote the lights, padding lanes excluded)
@@ -110,10 +112,10 @@ def _search(samples: npt.NDArray[np.float64], stats: npt.NDArray[np.float64],
 
 
 @numba.njit(cache=True, nogil=True, error_model="numpy")
-def _samples(raw: npt.NDArray[np.float32], q0: int, lanes: int, nrm: npt.NDArray[np.float64],
+def _samples(raw: npt.NDArray[np.generic], q0: int, lanes: int, nrm: npt.NDArray[np.float64],
              lights: npt.NDArray[np.float64], half: npt.NDArray[np.float64], min_cosi: float,
              saturated: float, samples: npt.NDArray[np.float64],
-             stats: npt.NDArray[np.float64]) -> None:
+             stats: npt.NDArray[np.float64], d: np.float32) -> None:
     """Pixels ``q0 …`` as the ``lanes`` first lanes of ``samples``: cosi, tan²θh, √(cosi/cosr)
     and colour per light, an excluded sample (a padding lane's too) as one that adds nothing
     (tan²θh = ∞, the rest 0); and their ``stats``: Σaa, Σay (r, g, b), Σyy, 1/Σaa, the
@@ -130,8 +132,8 @@ def _samples(raw: npt.NDArray[np.float32], q0: int, lanes: int, nrm: npt.NDArray
     acc = np.zeros(5 * L)  # Σaa, Σay (r, g, b), Σyy
     for i in range(n):
         for q in range(lanes):
-            col[q], col[L + q], col[2 * L + q] = raw[i, q0 + q, 0], raw[i, q0 + q, 1], \
-                raw[i, q0 + q, 2]
+            col[q], col[L + q] = unit(raw[i, q0 + q, 0], d), unit(raw[i, q0 + q, 1], d)
+            col[2 * L + q] = unit(raw[i, q0 + q, 2], d)
         row = samples[i * 6 * L:(i + 1) * 6 * L]
         l0, l1, l2 = lights[i, 0], lights[i, 1], lights[i, 2]
         h0, h1, h2 = half[i, 0], half[i, 1], half[i, 2]
@@ -316,10 +318,11 @@ def _solve(st: npt.NDArray[np.float64], sm: npt.NDArray[np.float64], alpha: floa
 
 def ward_band_compiled(raw: npt.NDArray[np.float32], nrm: npt.NDArray[np.floating],
                        lights: npt.NDArray[np.float64], grid: npt.NDArray[np.float64],
-                       limits: tuple[float, float]
+                       limits: tuple[float, float], div: float = 1.0
                        ) -> tuple[npt.NDArray[np.float32], npt.NDArray[np.float32],
                                   npt.NDArray[np.float32]]:
     """:func:`~.ward_solve.solve_ward_band` of ``raw (N, b, W, 3)``, ``nrm (b, W, 3)``:
+    (``raw`` float, or 8-/16-bit as decoded with ``div`` 255/65535, the same results)
     kd, ks ``(b, W, 3)`` and α ``(b, W)`` float32 (a gloss level's of ``limits``), with the
     constants read at call time.
 
@@ -341,9 +344,9 @@ def ward_band_compiled(raw: npt.NDArray[np.float32], nrm: npt.NDArray[np.floatin
     kd = np.empty((b * w, 3), np.float32)
     ks = np.empty((b * w, 3), np.float32)
     al = np.empty(b * w, np.float32)
-    _ward(np.ascontiguousarray(raw, np.float32).reshape(n, b * w, 3),
+    _ward(compiled.kernel_samples(raw).reshape(n, b * w, 3),
           np.ascontiguousarray(nrm, np.float64).reshape(b * w, 3), lf, half,
           np.ascontiguousarray(grid, np.float64), qa, twice, narrowing, ws.MIN_COSI, ws.SATURATED,
           math.cos(math.radians(ws.MAX_SPECULAR_ANGLE)), ws.MIN_LOBE_SAMPLES, ws.LOBE_WIDTH,
-          float(limits[0]), float(limits[1]), kd, ks, al)
+          float(limits[0]), float(limits[1]), kd, ks, al, np.float32(div))
     return kd.reshape(b, w, 3), ks.reshape(b, w, 3), al.reshape(b, w)

@@ -146,11 +146,11 @@ def test_vectorised_rank_window_equals_the_pixel_loop_bit_for_bit(n: int) -> Non
     lum = colour @ np.array([0.2125, 0.7154, 0.0721], np.float32)
     for lo, hi, shadow in ((n // 4, 3 * n // 4, 0.05), (0, n, 0.0), (n // 2, n // 2 + 2, 0.3)):
         out = [np.full((700, 3), np.nan, np.float32) for _ in range(4)]
-        nk.fit_chunk(lum, colour, lights, lo, hi, shadow, out[0], out[1], 0, 700)
+        nk.fit_chunk(lum, colour, lights, lo, hi, shadow, out[0], out[1], 0, 700, np.float32(1))
         keep = np.empty(n, np.bool_)
         for q in range(700):
             nk._pixel(lum[:, q].astype(np.float64), colour, lights, lo, hi, shadow, out[2],
-                      out[3], q, keep)
+                      out[3], q, keep, np.float32(1))
         assert np.array_equal(out[0], out[2]) and np.array_equal(out[1], out[3])
         assert np.isfinite(out[0]).all() and len(np.unique(out[0][:, 2])) > 100
 
