@@ -59,14 +59,16 @@ def ptm_rgb_band(band: Band, pinv255: npt.NDArray[np.float32]) -> Out:
 
 def luminance(band: npt.NDArray[np.generic], div: float = 1.0) -> npt.NDArray[np.float32]:
     """``Y`` of every sample of ``band (…, 3)`` in float32 (:data:`LUMINANCE_WEIGHTS`):
-    compiled for a contiguous float32 band, or 8-/16-bit as decoded (``band / div`` in 0–1,
-    :mod:`.luminance_kernel`: the same values)."""
-    if band.dtype in (np.float32, np.uint8, np.uint16) and band.flags.c_contiguous and \
-            band.shape[-1:] == (3,):
-        return luminance_compiled(band, _WEIGHTS32, 1.0 if band.dtype == np.float32 else div)
+    compiled (:mod:`.luminance_kernel`) for a float32 band, or 8-/16-bit as decoded
+    (``band / div`` in 0–1: the same values), a strided one copied first, so the rounding is
+    always ``(r·w0 + g·w1) + b·w2`` (numpy's ``band @ weights`` rounds as its BLAS does: one
+    ulp away on CPUs where it fuses multiply-adds, which made an in-memory fit, whose bands
+    are strided, differ from the streamed one).  A float64 band: numpy's product, float64."""
+    if band.dtype in (np.float32, np.uint8, np.uint16) and band.shape[-1:] == (3,):
+        return luminance_compiled(np.ascontiguousarray(band), _WEIGHTS32,
+                                  1.0 if band.dtype == np.float32 else div)
     if div != 1.0:
-        raise ValueError(f"a {band.dtype} band is read as decoded only when contiguous")
-    # numpy's product, as before (of a float64 band, float64)
+        raise ValueError(f"a {band.dtype} band is read as decoded only when 8-/16-bit")
     return cast("npt.NDArray[np.float32]", cast("npt.NDArray[np.floating]", band) @ _WEIGHTS32)
 
 
