@@ -25,7 +25,7 @@ _CHUNK = 512  # pixels per parallel task
 MAX_LIGHTS = MAX_COUNTED
 
 
-@numba.njit(cache=True, parallel=True, nogil=True)
+@numba.njit(cache=True, parallel=True, nogil=True, error_model="numpy")
 def _fused(lum: npt.NDArray[np.floating], colour: npt.NDArray[np.generic],
            lights: npt.NDArray[np.float64], lo: int, hi: int, shadow: float,
            train: npt.NDArray[np.intp], held: npt.NDArray[np.intp], lo_t: int, hi_t: int,

@@ -30,7 +30,7 @@ _CHUNK = 512  # pixels per parallel task
 MAX_COUNTED = 64
 
 
-@numba.njit(cache=True, parallel=True, nogil=True)
+@numba.njit(cache=True, parallel=True, nogil=True, error_model="numpy")
 def _rank_window(lum: npt.NDArray[np.floating], colour: npt.NDArray[np.generic],
                  lights: npt.NDArray[np.float64], lo: int, hi: int, shadow: float,
                  normals: npt.NDArray[np.float32], albedo: npt.NDArray[np.float32],
@@ -53,7 +53,7 @@ def _rank_window(lum: npt.NDArray[np.floating], colour: npt.NDArray[np.generic],
             _pixel(ys[q - q0], colour, lights, lo, hi, shadow, normals, albedo, q, keep, d)
 
 
-@numba.njit(cache=True, nogil=True)
+@numba.njit(cache=True, nogil=True, error_model="numpy")
 def fit_chunk(lum: npt.NDArray[np.floating], colour: npt.NDArray[np.generic],
               lights: npt.NDArray[np.float64], lo: int, hi: int, shadow: float,
               normals: npt.NDArray[np.float32], albedo: npt.NDArray[np.float32],
@@ -75,7 +75,7 @@ def fit_chunk(lum: npt.NDArray[np.floating], colour: npt.NDArray[np.generic],
     return y, rank
 
 
-@numba.njit(cache=True, nogil=True)
+@numba.njit(cache=True, nogil=True, error_model="numpy")
 def chunk_luminance(lum: npt.NDArray[np.floating], q0: int, q1: int) -> npt.NDArray[np.generic]:
     """Pixels ``q0:q1`` of ``lum (N, P)``, contiguous rows: the loops over them vectorise."""
     n, m = lum.shape[0], q1 - q0
@@ -85,7 +85,7 @@ def chunk_luminance(lum: npt.NDArray[np.floating], q0: int, q1: int) -> npt.NDAr
     return y
 
 
-@numba.njit(cache=True, nogil=True)
+@numba.njit(cache=True, nogil=True, error_model="numpy")
 def ranks(y: npt.NDArray[np.generic]) -> npt.NDArray[np.int32]:
     """``(N, m)``: each sample's stable rank among its pixel's N (earlier equal ones lower)."""
     n, m = y.shape
@@ -104,7 +104,7 @@ def ranks(y: npt.NDArray[np.generic]) -> npt.NDArray[np.int32]:
     return rank
 
 
-@numba.njit(cache=True, nogil=True)
+@numba.njit(cache=True, nogil=True, error_model="numpy")
 def window(y: npt.NDArray[np.generic], rank: npt.NDArray[np.int32],
            rows: npt.NDArray[np.intp], lo: int, hi: int, shadow: float
            ) -> npt.NDArray[np.bool_]:
@@ -137,58 +137,68 @@ def window(y: npt.NDArray[np.generic], rank: npt.NDArray[np.int32],
     return keep
 
 
-@numba.njit(cache=True, nogil=True)
+@numba.njit(cache=True, nogil=True, error_model="numpy")
 def fit_rows(y: npt.NDArray[np.generic], keep: npt.NDArray[np.bool_],
              rows: npt.NDArray[np.intp], lights: npt.NDArray[np.float64],
              colour: npt.NDArray[np.generic], q0: int, d: np.float32
              ) -> tuple[npt.NDArray[np.float64], npt.NDArray[np.float64]]:
     """Normals and albedo ``(3, m)`` of the kept samples of the lights ``rows`` (summed in
-    their order); ``colour (N, P, 3)`` read from pixel ``q0`` (each sample
-    :func:`~.compiled.unit` of ``d``)."""
+    their order); ``colour (N, P, 3)`` contiguous, read from pixel ``q0`` (each sample
+    :func:`~.compiled.unit` of ``d``).
+
+    Each loop over the pixels updates at most three sums, each its own array: LLVM vectorises
+    a loop only when it can check at run time that its arrays do not overlap, and it gives up
+    past a few of them (the nine sums in one loop ran scalar, three times slower).  The
+    albedo's sums run over the colour samples in their stored order (pixel-major, the three
+    channels interleaved), each shading repeated for its three: the same terms in the same
+    order, so the same bits."""
     n, m = rows.shape[0], y.shape[1]
     a = np.zeros((9, m))  # a00 a11 a22 a01 a02 a12 b0 b1 b2
-    for j in range(n):
-        i = rows[j]
-        lx, ly, lz = lights[i, 0], lights[i, 1], lights[i, 2]
-        yr, kj = y[i], keep[j]
-        for q in range(m):
-            k = kj[q]
-            yi = float(yr[q])
-            a[0, q] += lx * lx if k else 0.0
-            a[1, q] += ly * ly if k else 0.0
-            a[2, q] += lz * lz if k else 0.0
-            a[3, q] += lx * ly if k else 0.0
-            a[4, q] += lx * lz if k else 0.0
-            a[5, q] += ly * lz if k else 0.0
-            a[6, q] += yi * lx if k else 0.0
-            a[7, q] += yi * ly if k else 0.0
-            a[8, q] += yi * lz if k else 0.0
+    for part in range(3):
+        s0, s1, s2 = a[3 * part], a[3 * part + 1], a[3 * part + 2]
+        for j in range(n):
+            i = rows[j]
+            lx, ly, lz = lights[i, 0], lights[i, 1], lights[i, 2]
+            f0, f1, f2 = ((lx * lx, ly * ly, lz * lz) if part == 0 else
+                          (lx * ly, lx * lz, ly * lz) if part == 1 else (lx, ly, lz))
+            yr, kj = y[i], keep[j]
+            for q in range(m):
+                k = kj[q]
+                yi = float(yr[q]) if part == 2 else 1.0
+                s0[q] += yi * f0 if k else 0.0
+                s1[q] += yi * f1 if k else 0.0
+                s2[q] += yi * f2 if k else 0.0
     nrm = np.empty((3, m))
     for q in range(m):
         g0, g1, g2 = _solve3(a[0, q] + _RIDGE, a[1, q] + _RIDGE, a[2, q] + _RIDGE, a[3, q],
                              a[4, q], a[5, q], a[6, q], a[7, q], a[8, q])
         nrm[0, q], nrm[1, q], nrm[2, q] = _unit(g0, g1, g2)
-    r = np.zeros((4, m))  # den r0 r1 r2
+    den = np.zeros(m)
+    shade = np.empty(3 * m)  # each pixel's shading, once per channel
+    sums = np.zeros(3 * m)  # Σ s · I per pixel and channel, interleaved as stored
+    n0, n1, n2 = nrm[0], nrm[1], nrm[2]
     for j in range(n):
         i = rows[j]
         lx, ly, lz = lights[i, 0], lights[i, 1], lights[i, 2]
-        c = colour[i, q0:q0 + m]
         kj = keep[j]
         for q in range(m):
-            k = kj[q]
-            s = max(0.0, nrm[0, q] * lx + nrm[1, q] * ly + nrm[2, q] * lz) if k else 0.0
-            r[0, q] += s * s
-            r[1, q] += s * unit(c[q, 0], d) if k else 0.0
-            r[2, q] += s * unit(c[q, 1], d) if k else 0.0
-            r[3, q] += s * unit(c[q, 2], d) if k else 0.0
+            s = max(0.0, n0[q] * lx + n1[q] * ly + n2[q] * lz) if kj[q] else 0.0
+            den[q] += s * s
+            shade[3 * q] = s
+            shade[3 * q + 1] = s
+            shade[3 * q + 2] = s
+        c = colour[i].reshape(-1)[3 * q0:3 * (q0 + m)]
+        for t in range(3 * m):  # a sample left out (or unlit) adds 0.0, as before
+            sums[t] += shade[t] * unit(c[t], d) if shade[t] > 0.0 else 0.0
     alb = np.empty((3, m))
     for q in range(m):
-        den = max(r[0, q], 1e-12)
-        alb[0, q], alb[1, q], alb[2, q] = r[1, q] / den, r[2, q] / den, r[3, q] / den
+        dd = max(den[q], 1e-12)
+        alb[0, q], alb[1, q], alb[2, q] = sums[3 * q] / dd, sums[3 * q + 1] / dd, \
+            sums[3 * q + 2] / dd
     return nrm, alb
 
 
-@numba.njit(cache=True, nogil=True, inline="always")
+@numba.njit(cache=True, nogil=True, inline="always", error_model="numpy")
 def _solve3(a00: float, a11: float, a22: float, a01: float, a02: float, a12: float,
             b0: float, b1: float, b2: float) -> tuple[float, float, float]:
     """The symmetric 3×3 system by Cramer's rule; ``(0, 0, 0)`` if singular."""
@@ -205,7 +215,7 @@ def _solve3(a00: float, a11: float, a22: float, a01: float, a02: float, a12: flo
             (c02 * b0 + c12 * b1 + c22 * b2) / det)
 
 
-@numba.njit(cache=True, nogil=True, inline="always")
+@numba.njit(cache=True, nogil=True, inline="always", error_model="numpy")
 def _unit(g0: float, g1: float, g2: float) -> tuple[float, float, float]:
     """``g/|g|`` flipped to ``n_z ≥ 0``; ``(0, 0, 1)`` for ``|g|`` ≈ 0."""
     norm = math.sqrt(g0 * g0 + g1 * g1 + g2 * g2)
@@ -217,7 +227,7 @@ def _unit(g0: float, g1: float, g2: float) -> tuple[float, float, float]:
     return nx, ny, nz
 
 
-@numba.njit(cache=True, nogil=True)
+@numba.njit(cache=True, nogil=True, error_model="numpy")
 def _select(y: npt.NDArray[np.float64], lo: int, hi: int, shadow: float,
             keep: npt.NDArray[np.bool_]) -> None:
     """``keep`` = the samples whose stable rank is in ``[lo, hi)`` and brighter than ``shadow``
@@ -248,7 +258,7 @@ def _select(y: npt.NDArray[np.float64], lo: int, hi: int, shadow: float,
             keep[i] = y[i] > threshold
 
 
-@numba.njit(cache=True, nogil=True)
+@numba.njit(cache=True, nogil=True, error_model="numpy")
 def _pixel(y: npt.NDArray[np.float64], colour: npt.NDArray[np.generic],
            lights: npt.NDArray[np.float64], lo: int, hi: int, shadow: float,
            normals: npt.NDArray[np.float32], albedo: npt.NDArray[np.float32], q: int,
