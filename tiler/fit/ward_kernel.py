@@ -302,11 +302,10 @@ def _solve(st: npt.NDArray[np.float64], sm: npt.NDArray[np.float64], alpha: floa
         sse = (yy - 2 * (d0 * say0 + s0 * sby0 + d1 * say1 + s1 * sby1 + d2 * say2 + s2 * sby2)
                + (d0 * d0 + d1 * d1 + d2 * d2) * saa + 2 * (d0 * s0 + d1 * s1 + d2 * s2) * sab
                + (s0 * s0 + s1 * s1 + s2 * s2) * sbb)
-        if again:
-            better = (best[4 * L + q] > 0.0) | (best[5 * L + q] > 0.0) | (best[6 * L + q] > 0.0)
-        else:
-            better = sse < best[q]
-            best[7 * L + q] = alpha if better else best[7 * L + q]
+        # a select, not a branch on ``again``: a branch in the loop kept it from vectorising
+        kept = (best[4 * L + q] > 0.0) | (best[5 * L + q] > 0.0) | (best[6 * L + q] > 0.0)
+        better = (again & kept) | (not again and sse < best[q])
+        best[7 * L + q] = alpha if better and not again else best[7 * L + q]
         best[q] = sse if better else best[q]
         best[L + q] = d0 if better else best[L + q]
         best[2 * L + q] = d1 if better else best[2 * L + q]
