@@ -12,6 +12,7 @@ from typing import Literal
 import numpy as np
 import numpy.typing as npt
 
+from .luminance_kernel import luminance_compiled
 from .normals_kernel import rank_window_normals
 
 F64 = npt.NDArray[np.float64]
@@ -35,13 +36,14 @@ _MIN_CONDITION = 1e-8  # det(A) / (trace(A)/3)^3 below this: too few directions 
 _UPPER = ((0, 0), (1, 1), (2, 2), (0, 1), (0, 2), (1, 2))
 
 
-def solve_normals_band(lum: npt.NDArray[np.floating], colour: npt.NDArray[np.generic],
+def solve_normals_band(lum: npt.NDArray[np.floating] | None, colour: npt.NDArray[np.generic],
                        lights: F64, *,
                        rank_window: tuple[float, float] = RANK_WINDOW,
                        shadow: float = SHADOW_FRACTION, iterations: int = ITERATIONS,
                        estimator: Estimator = "tukey", tuning: float | None = None,
                        tol: float = 1e-4, scale_floor: float = 1e-3,
-                       compiled: bool = True, div: float = 1.0) -> tuple[F32, F32]:
+                       compiled: bool = True, div: float = 1.0,
+                       weights: F32 | None = None) -> tuple[F32, F32]:
     r"""Estimate normals and Lambert albedo by robust photometric stereo (Woodham + IRLS).
 
     Per pixel, with luminance samples :math:`Y_i` under unit lights :math:`l_i`:
@@ -71,8 +73,11 @@ def solve_normals_band(lum: npt.NDArray[np.floating], colour: npt.NDArray[np.gen
 
     Parameters
     ----------
-    lum : ndarray, shape (N, P)
-        Luminance of P pixels under N lights (any consistent units, e.g. 0–1).
+    lum : ndarray, shape (N, P), or None
+        Luminance of P pixels under N lights (any consistent units, e.g. 0–1); None: the
+        float32 luminance of ``colour`` (float32 or 8-/16-bit) with ``weights``, the values
+        of :func:`~.luminance_kernel.luminance_compiled` (the compiled rank window takes it
+        chunk by chunk and never stores it whole).
     colour : ndarray, shape (N, P, 3)
         The RGB samples the albedo is fitted to (float32 or float64).
     lights : ndarray, shape (N, 3)
@@ -105,12 +110,18 @@ def solve_normals_band(lum: npt.NDArray[np.floating], colour: npt.NDArray[np.gen
     ValueError
         On inconsistent shapes, fewer than 3 or coplanar lights, or out-of-range options.
     """
-    lights = _check(lum, colour, lights, rank_window, shadow, iterations, estimator, tuning,
+    shape = lum if lum is not None else np.broadcast_to(np.float32(0), colour.shape[:2])
+    lights = _check(shape, colour, lights, rank_window, shadow, iterations, estimator, tuning,
                     tol, scale_floor)
-    n, p = lum.shape
+    n, p = shape.shape
     lo, hi = rank_bounds(rank_window, n)
     if compiled and iterations == 0:
-        return rank_window_normals(lum, colour, lights, lo, hi, shadow, div)
+        return rank_window_normals(lum, colour, lights, lo, hi, shadow, div, weights)
+    if lum is None:
+        if weights is None:
+            raise ValueError("lum None needs the luminance weights")
+        lum = luminance_compiled(np.ascontiguousarray(colour), np.asarray(weights, np.float32),
+                                 div)
     if div != 1.0:
         raise ValueError("colour as decoded (div != 1) needs the compiled rank window")
     c = TUNING[estimator] if tuning is None else float(tuning)

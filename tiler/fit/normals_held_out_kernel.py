@@ -18,7 +18,7 @@ import numpy as np
 import numpy.typing as npt
 
 from .compiled import unit
-from .normals_kernel import MAX_COUNTED, fit_chunk, fit_rows, window
+from .normals_kernel import MAX_COUNTED, chunk_rows, fit_chunk, fit_rows, kernel_rows, window
 
 _CHUNK = 512  # pixels per parallel task
 #: The most lights the pass takes (its ranks are counted, as :mod:`.normals_kernel`'s).
@@ -30,13 +30,15 @@ def _fused(lum: npt.NDArray[np.floating], colour: npt.NDArray[np.generic],
            lights: npt.NDArray[np.float64], lo: int, hi: int, shadow: float,
            train: npt.NDArray[np.intp], held: npt.NDArray[np.intp], lo_t: int, hi_t: int,
            normals: npt.NDArray[np.float32], albedo: npt.NDArray[np.float32],
-           sse: npt.NDArray[np.float64], d: np.float32) -> None:
-    p = lum.shape[1]
+           sse: npt.NDArray[np.float64], d: np.float32, weights: npt.NDArray[np.float32],
+           from_colour: bool) -> None:
+    p = colour.shape[1]
     nt, h = train.shape[0], held.shape[0]
     for chunk in numba.prange((p + _CHUNK - 1) // _CHUNK):
         q0, q1 = chunk * _CHUNK, min(p, (chunk + 1) * _CHUNK)
         m = q1 - q0
-        y, rank = fit_chunk(lum, colour, lights, lo, hi, shadow, normals, albedo, q0, q1, d)
+        y = chunk_rows(lum, colour, weights, from_colour, q0, q1, d)
+        rank = fit_chunk(y, colour, lights, lo, hi, shadow, normals, albedo, q0, d)
         rank_t = np.empty((nt, m), np.int32)
         for j in range(nt):
             i = train[j]
@@ -69,28 +71,33 @@ def _fused(lum: npt.NDArray[np.floating], colour: npt.NDArray[np.generic],
             sse[chunk, jh] = acc
 
 
-def rank_window_normals_held_out(lum: npt.NDArray[np.floating], colour: npt.NDArray[np.generic],
+def rank_window_normals_held_out(lum: npt.NDArray[np.floating] | None,
+                                 colour: npt.NDArray[np.generic],
                                  lights: npt.NDArray[np.float64], window_lo_hi: tuple[int, int],
                                  shadow: float, train: npt.NDArray[np.intp],
                                  held: npt.NDArray[np.intp], train_lo_hi: tuple[int, int],
-                                 div: float = 1.0
+                                 div: float = 1.0,
+                                 weights: npt.NDArray[np.float32] | None = None
                                  ) -> tuple[npt.NDArray[np.float32], npt.NDArray[np.float32],
                                             npt.NDArray[np.float64]]:
     """Normals and albedo ``(P, 3)`` float32 of ``lum (N, P)``, ``colour (N, P, 3)`` 0–1 under
     ``lights (N, 3)`` (ranks ``window_lo_hi``), and the squared errors ``(h,)`` on the
     ``held`` lights of the fit of the ``train`` lights (ranks ``train_lo_hi`` among them);
     ``train`` and ``held`` ascending, at most :data:`MAX_LIGHTS` lights; ``colour`` may be 8-/16-bit
-    as decoded, with ``div`` 255/65535 (the results of the float ``colour / div``)."""
-    n, p = lum.shape
+    as decoded, with ``div`` 255/65535 (the results of the float ``colour / div``); ``lum``
+    None: the luminance of ``colour`` with ``weights``, chunk by chunk in the pass
+    (:func:`~.normals_kernel.rank_window_normals`)."""
+    n, p = colour.shape[:2]
     if n > MAX_LIGHTS:
         raise ValueError(f"the fused pass takes at most {MAX_LIGHTS} lights, not {n}")
     normals = np.empty((p, 3), np.float32)
     albedo = np.empty((p, 3), np.float32)
     sse = np.zeros(((p + _CHUNK - 1) // _CHUNK, len(held)))
-    _fused(np.ascontiguousarray(lum), np.ascontiguousarray(colour),
+    rows, w = kernel_rows(lum, colour, weights)
+    _fused(rows, np.ascontiguousarray(colour),
            np.ascontiguousarray(lights, np.float64), window_lo_hi[0], window_lo_hi[1],
            float(shadow), np.ascontiguousarray(train, np.intp),
            np.ascontiguousarray(held, np.intp), train_lo_hi[0], train_lo_hi[1], normals, albedo,
-           sse, np.float32(div))
+           sse, np.float32(div), w, lum is None)
     out: npt.NDArray[np.float64] = sse.sum(axis=0)
     return normals, albedo, out

@@ -22,6 +22,7 @@ import numpy as np
 import numpy.typing as npt
 
 from .compiled import unit
+from .luminance_kernel import luminance_rows
 
 _RIDGE = 1e-9
 _CHUNK = 512  # pixels per parallel task
@@ -34,45 +35,58 @@ MAX_COUNTED = 64
 def _rank_window(lum: npt.NDArray[np.floating], colour: npt.NDArray[np.generic],
                  lights: npt.NDArray[np.float64], lo: int, hi: int, shadow: float,
                  normals: npt.NDArray[np.float32], albedo: npt.NDArray[np.float32],
-                 d: np.float32) -> None:
-    n, p = lum.shape
+                 d: np.float32, weights: npt.NDArray[np.float32], from_colour: bool) -> None:
+    n, p = colour.shape[0], colour.shape[1]
     if n <= MAX_COUNTED:  # ranks by counting, vectorised across the chunk's pixels
         for chunk in numba.prange((p + _CHUNK - 1) // _CHUNK):
             q0, q1 = chunk * _CHUNK, min(p, (chunk + 1) * _CHUNK)
-            fit_chunk(lum, colour, lights, lo, hi, shadow, normals, albedo, q0, q1, d)
+            y = chunk_rows(lum, colour, weights, from_colour, q0, q1, d)
+            fit_chunk(y, colour, lights, lo, hi, shadow, normals, albedo, q0, d)
         return
     for chunk in numba.prange((p + _CHUNK - 1) // _CHUNK):
         q0, q1 = chunk * _CHUNK, min(p, (chunk + 1) * _CHUNK)
         # the chunk's luminances pixel-major (the input is light-major: a cache line a sample)
+        y = chunk_rows(lum, colour, weights, from_colour, q0, q1, d)
         ys = np.empty((q1 - q0, n))
         for i in range(n):
-            for q in range(q0, q1):
-                ys[q - q0, i] = lum[i, q]
+            for q in range(q1 - q0):
+                ys[q, i] = y[i, q]
         keep = np.empty(n, np.bool_)
         for q in range(q0, q1):
             _pixel(ys[q - q0], colour, lights, lo, hi, shadow, normals, albedo, q, keep, d)
 
 
 @numba.njit(cache=True, nogil=True, error_model="numpy")
-def fit_chunk(lum: npt.NDArray[np.floating], colour: npt.NDArray[np.generic],
+def chunk_rows(lum: npt.NDArray[np.floating], colour: npt.NDArray[np.generic],
+               weights: npt.NDArray[np.float32], from_colour: bool, q0: int, q1: int,
+               d: np.float32) -> npt.NDArray[np.generic]:
+    """The luminances ``(N, q1 − q0)`` of pixels ``q0:q1``, contiguous rows: ``from_colour``,
+    those of ``colour`` (:func:`~.luminance_kernel.luminance_rows`: the luminance kernel's
+    values, the band's never stored whole), else a copy of ``lum``'s."""
+    if from_colour:
+        return luminance_rows(colour, weights, q0, q1, d, lum)
+    return chunk_luminance(lum, q0, q1)
+
+
+@numba.njit(cache=True, nogil=True, error_model="numpy")
+def fit_chunk(y: npt.NDArray[np.generic], colour: npt.NDArray[np.generic],
               lights: npt.NDArray[np.float64], lo: int, hi: int, shadow: float,
               normals: npt.NDArray[np.float32], albedo: npt.NDArray[np.float32],
-              q0: int, q1: int, d: np.float32
-              ) -> tuple[npt.NDArray[np.generic], npt.NDArray[np.int32]]:
-    """Pixels ``q0:q1`` (at most :data:`MAX_COUNTED` lights): :func:`_select` and
-    :func:`_pixel`'s arithmetic with every loop over the pixels innermost, so it runs on
-    vectors of pixels.  Each pixel's sums add the same terms in the same order (a sample left
-    out adds 0.0, which changes no sum), so the results are bit for bit those of the pixel
-    loop.  Returns the chunk's luminances and ranks (:func:`chunk_luminance`, :func:`ranks`)."""
-    y = chunk_luminance(lum, q0, q1)
-    rows = np.arange(lum.shape[0])
+              q0: int, d: np.float32) -> npt.NDArray[np.int32]:
+    """Pixels ``q0:q0 + m`` from their luminances ``y (N, m)`` (at most :data:`MAX_COUNTED`
+    lights; :func:`chunk_rows`): :func:`_select` and :func:`_pixel`'s arithmetic with every
+    loop over the pixels innermost, so it runs on vectors of pixels.  Each pixel's sums add
+    the same terms in the same order (a sample left out adds 0.0, which changes no sum), so
+    the results are bit for bit those of the pixel loop.  Returns the chunk's ranks
+    (:func:`ranks`)."""
+    rows = np.arange(y.shape[0])
     rank = ranks(y)
     nrm, alb = fit_rows(y, window(y, rank, rows, lo, hi, shadow), rows, lights, colour, q0, d)
-    for q in range(q1 - q0):
+    for q in range(y.shape[1]):
         for c in range(3):
             normals[q0 + q, c] = nrm[c, q]
             albedo[q0 + q, c] = alb[c, q]
-    return y, rank
+    return rank
 
 
 @numba.njit(cache=True, nogil=True, error_model="numpy")
@@ -296,18 +310,33 @@ def _pixel(y: npt.NDArray[np.float64], colour: npt.NDArray[np.generic],
     albedo[q, 0], albedo[q, 1], albedo[q, 2] = r0 / den, r1 / den, r2 / den
 
 
-def rank_window_normals(lum: npt.NDArray[np.floating], colour: npt.NDArray[np.generic],
+def rank_window_normals(lum: npt.NDArray[np.floating] | None, colour: npt.NDArray[np.generic],
                         lights: npt.NDArray[np.float64], lo: int, hi: int, shadow: float,
-                        div: float = 1.0
+                        div: float = 1.0, weights: npt.NDArray[np.float32] | None = None
                         ) -> tuple[npt.NDArray[np.float32], npt.NDArray[np.float32]]:
     """Normals and albedo ``(P, 3)`` float32 of ``lum (N, P)``, ``colour (N, P, 3)`` (float32
     or float64, or 8-/16-bit as decoded with ``div`` 255/65535: compiled for each) under unit
     ``lights (N, 3)``, from the samples ranked ``[lo, hi)`` and brighter than ``shadow`` × the
-    pixel's maximum (checked by the caller)."""
-    p = lum.shape[1]
+    pixel's maximum (checked by the caller).  ``lum`` None: the float32 luminance of ``colour``
+    (float32 or 8-/16-bit) with ``weights``, taken chunk by chunk inside the kernel (the
+    values of :func:`~.luminance_kernel.luminance_compiled`, so the same results)."""
+    p = colour.shape[1]
     normals = np.empty((p, 3), np.float32)
     albedo = np.empty((p, 3), np.float32)
-    _rank_window(np.ascontiguousarray(lum), np.ascontiguousarray(colour),
-                 np.ascontiguousarray(lights, np.float64), lo, hi, float(shadow), normals, albedo,
-                 np.float32(div))
+    rows, w = kernel_rows(lum, colour, weights)
+    _rank_window(rows, np.ascontiguousarray(colour), np.ascontiguousarray(lights, np.float64),
+                 lo, hi, float(shadow), normals, albedo, np.float32(div), w, lum is None)
     return normals, albedo
+
+
+def kernel_rows(lum: npt.NDArray[np.floating] | None, colour: npt.NDArray[np.generic],
+                weights: npt.NDArray[np.float32] | None
+                ) -> tuple[npt.NDArray[np.floating], npt.NDArray[np.float32]]:
+    """The kernels' ``lum`` and ``weights``: ``lum`` contiguous; or (None) an empty float32
+    stand-in, the luminances then taken from ``colour`` with ``weights``."""
+    if lum is not None:
+        return np.ascontiguousarray(lum), np.zeros(3, np.float32)
+    if weights is None or colour.dtype not in (np.float32, np.uint8, np.uint16):
+        raise ValueError("the luminance is taken from a float32 or 8-/16-bit colour, with "
+                         "its weights")
+    return np.empty((colour.shape[0], 0), np.float32), np.asarray(weights, np.float32)

@@ -159,13 +159,57 @@ def test_vectorised_rank_window_equals_the_pixel_loop_bit_for_bit(n: int) -> Non
     lum = colour @ np.array([0.2125, 0.7154, 0.0721], np.float32)
     for lo, hi, shadow in ((n // 4, 3 * n // 4, 0.05), (0, n, 0.0), (n // 2, n // 2 + 2, 0.3)):
         out = [np.full((700, 3), np.nan, np.float32) for _ in range(4)]
-        nk.fit_chunk(lum, colour, lights, lo, hi, shadow, out[0], out[1], 0, 700, np.float32(1))
+        nk.fit_chunk(nk.chunk_luminance(lum, 0, 700), colour, lights, lo, hi, shadow, out[0],
+                     out[1], 0, np.float32(1))
         keep = np.empty(n, np.bool_)
         for q in range(700):
             nk._pixel(lum[:, q].astype(np.float64), colour, lights, lo, hi, shadow, out[2],
                       out[3], q, keep, np.float32(1))
         assert np.array_equal(out[0], out[2]) and np.array_equal(out[1], out[3])
         assert np.isfinite(out[0]).all() and len(np.unique(out[0][:, 2])) > 100
+
+
+@pytest.mark.parametrize(("n", "dtype"), [(24, np.uint8), (24, np.float32), (7, np.uint16),
+                                          (70, np.uint8)])
+def test_rank_window_takes_the_luminance_in_the_kernel_bit_for_bit(n: int, dtype: type) -> None:
+    """``lum`` None: the kernels take each chunk's luminance from the colour samples, and give
+    the bits of a fit of the band's stored luminance (:func:`luminance`), with its report, for
+    8-/16-bit and float bands, a width not a multiple of the chunk, and past the counted ranks
+    (> 64 lights, each pixel sorted)."""
+    from lanterna.tiler.fit import normals_kernel as nk
+    from lanterna.tiler.fit.bands import _WEIGHTS32
+    from lanterna.tiler.fit.normals import RANK_WINDOW, SHADOW_FRACTION, rank_bounds
+    from lanterna.tiler.fit.normals_held_out_kernel import rank_window_normals_held_out
+    from tests.python.fixtures.photos import spiral_lights
+
+    rng = np.random.default_rng(n)
+    lights = spiral_lights(n, (12.0, 80.0))
+    top = 1.0 if dtype == np.float32 else float(np.iinfo(dtype).max)
+    div = 1.0 if dtype == np.float32 else top
+    values = rng.random((n, 1037, 3)) * top
+    values[:, :90] = np.round(values[:, :90] / top * 3) * top / 3  # ties
+    values[: n // 3, 90:400] = 0.0  # shadowed samples
+    colour = (values if dtype == np.float32 else np.rint(values)).astype(dtype)
+    lum = luminance(colour, div)
+    lo, hi = rank_bounds(RANK_WINDOW, n)
+    stored = nk.rank_window_normals(lum, colour, lights, lo, hi, SHADOW_FRACTION, div)
+    taken = nk.rank_window_normals(None, colour, lights, lo, hi, SHADOW_FRACTION, div,
+                                   _WEIGHTS32)
+    for a, b in zip(stored, taken, strict=True):
+        assert np.array_equal(a.view(np.uint32), b.view(np.uint32))
+    assert len(np.unique(taken[0][:, 2])) > 500
+    if n <= 64:
+        train, held = np.arange(n)[np.arange(n) % 4 > 0], np.arange(n)[::4]
+        args = (lights, (lo, hi), SHADOW_FRACTION, train, held,
+                rank_bounds(RANK_WINDOW, len(train)), div)
+        with_lum = rank_window_normals_held_out(lum, colour, *args)
+        without = rank_window_normals_held_out(None, colour, *args, _WEIGHTS32)
+        for a, b in zip(with_lum, without, strict=True):
+            assert np.array_equal(a, b)
+        assert with_lum[2].min() > 0
+    with pytest.raises(ValueError, match="luminance is taken"):
+        nk.rank_window_normals(None, colour.astype(np.float64), lights, lo, hi, 0.0, 1.0,
+                               _WEIGHTS32)
 
 
 @pytest.mark.parametrize("depth", [8, 16])
