@@ -17,6 +17,7 @@ import numpy.typing as npt
 from lanterna.tiler.formats.hsh_basis import hsh_weights
 from lanterna.tiler.formats.ptm_model import ptm_weights
 
+from .compiled import SAMPLE_TYPES
 from .linear_kernel import linear_band
 from .lrgb_kernel import lrgb_band_compiled
 from .luminance_kernel import luminance_compiled
@@ -37,7 +38,6 @@ Out = dict[str, npt.NDArray[np.generic]]
 #: Rec. 709 luminance weights used by ptmfit (``computepoly.c``).
 LUMINANCE_WEIGHTS = (0.2125, 0.7154, 0.0721)
 _WEIGHTS32: npt.NDArray[np.float32] = np.asarray(LUMINANCE_WEIGHTS, np.float32)
-_COMPILED = (np.float32, np.uint8, np.uint16)  # the sample types the compiled kernels read
 #: Tukey IRLS steps of the photometric stereo in linear light (none on values as stored).
 IRLS_ITERATIONS = ITERATIONS
 
@@ -65,7 +65,7 @@ def luminance(band: npt.NDArray[np.generic], div: float = 1.0) -> npt.NDArray[np
     always ``(r·w0 + g·w1) + b·w2`` (numpy's ``band @ weights`` rounds as its BLAS does: one
     ulp away on CPUs where it fuses multiply-adds, which made an in-memory fit, whose bands
     are strided, differ from the streamed one).  A float64 band: numpy's product, float64."""
-    if band.dtype in _COMPILED and band.shape[-1:] == (3,):
+    if band.dtype in SAMPLE_TYPES and band.shape[-1:] == (3,):
         return luminance_compiled(np.ascontiguousarray(band), _WEIGHTS32,
                                   1.0 if band.dtype == np.float32 else div)
     if div != 1.0:
@@ -112,9 +112,8 @@ def normals_band(band: npt.NDArray[np.generic], lights: Lights, *,
     band (``div`` ≠ 1: 8-/16-bit as decoded, contiguous, with the rank window alone).
     """
     n, b, w, _ = band.shape
-    # the rank window alone takes the luminance chunk by chunk (the same values, not stored)
-    fused = iterations == 0 and band.dtype in _COMPILED and band.flags.c_contiguous
-    lum = None if fused else luminance(band, div).reshape(n, -1)
+    # None: the solver takes the luminance itself (the rank window chunk by chunk, not stored)
+    lum = None if band.dtype in SAMPLE_TYPES else luminance(band, div).reshape(n, -1)
     nrm, albedo = solve_normals_band(lum, band.reshape(n, -1, 3), lights.astype(np.float64),
                                      rank_window=rank_window, shadow=shadow,
                                      iterations=iterations, div=div, weights=_WEIGHTS32)
@@ -128,8 +127,7 @@ def normals_band_held_out(band: npt.NDArray[np.generic], lights: Lights,
     squared errors on the ``held`` lights of the same fit of the ``train`` lights
     (:mod:`.normals_held_out_kernel`); at most ``MAX_LIGHTS`` lights; ``band / div`` in 0–1."""
     n, b, w, _ = band.shape
-    fused = band.dtype in _COMPILED and band.flags.c_contiguous
-    lum = None if fused else luminance(band, div).reshape(n, -1)
+    lum = None if band.dtype in SAMPLE_TYPES else luminance(band, div).reshape(n, -1)
     nrm, albedo, sse = rank_window_normals_held_out(
         lum, band.reshape(n, -1, 3), lights.astype(np.float64), rank_bounds(RANK_WINDOW, n),
         SHADOW_FRACTION, train, held, rank_bounds(RANK_WINDOW, len(train)), div, _WEIGHTS32)

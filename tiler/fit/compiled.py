@@ -42,6 +42,10 @@ if "NUMBA_CPU_FEATURES" not in os.environ and "NUMBA_CPU_NAME" not in os.environ
         llvm.get_host_cpu_features().flatten())
 
 
+#: The sample types the kernels read as they are (8-/16-bit as decoded, with :func:`unit`).
+SAMPLE_TYPES = (np.float32, np.uint8, np.uint16)
+
+
 def kernel_samples(band: npt.NDArray[np.generic]) -> npt.NDArray[np.generic]:
     """``band`` contiguous for a kernel that divides its samples where it reads them: 8- and
     16-bit kept as decoded, float32 as it is, any other format as float32 (one

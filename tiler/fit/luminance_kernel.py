@@ -21,6 +21,15 @@ import numpy.typing as npt
 from .compiled import unit
 
 
+@numba.njit(cache=True, nogil=True, inline="always")
+def _weighted(src: npt.NDArray[np.generic], t: int, w0: np.float32, w1: np.float32,
+              w2: np.float32, d: np.float32) -> np.float32:
+    """The luminance of the sample ``src[t:t + 3]``: ``(r·w0 + g·w1) + b·w2``, each
+    :func:`~.compiled.unit` of ``d`` (written once, so both kernels round alike)."""
+    y: np.float32 = unit(src[t], d) * w0 + unit(src[t + 1], d) * w1 + unit(src[t + 2], d) * w2
+    return y
+
+
 @numba.njit(cache=True, nogil=True, error_model="numpy")
 def luminance_rows(colour: npt.NDArray[np.generic], weights: npt.NDArray[np.float32],
                    q0: int, q1: int, d: np.float32, like: npt.NDArray[np.generic]
@@ -35,8 +44,7 @@ def luminance_rows(colour: npt.NDArray[np.generic], weights: npt.NDArray[np.floa
         c = colour[i].reshape(-1)[3 * q0:3 * q1]
         yi = y[i]
         for q in range(m):
-            yi[q] = unit(c[3 * q], d) * w0 + unit(c[3 * q + 1], d) * w1 + \
-                unit(c[3 * q + 2], d) * w2
+            yi[q] = _weighted(c, 3 * q, w0, w1, w2, d)
     return y
 
 
@@ -47,8 +55,7 @@ def _luminance(src: npt.NDArray[np.generic], weights: npt.NDArray[np.float32],
     both contiguous."""
     w0, w1, w2 = weights[0], weights[1], weights[2]
     for q in range(dst.shape[0]):
-        dst[q] = unit(src[3 * q], d) * w0 + unit(src[3 * q + 1], d) * w1 + \
-            unit(src[3 * q + 2], d) * w2
+        dst[q] = _weighted(src, 3 * q, w0, w1, w2, d)
 
 
 def luminance_compiled(band: npt.NDArray[np.generic], weights: npt.NDArray[np.float32],

@@ -110,10 +110,10 @@ def solve_normals_band(lum: npt.NDArray[np.floating] | None, colour: npt.NDArray
     ValueError
         On inconsistent shapes, fewer than 3 or coplanar lights, or out-of-range options.
     """
-    shape = lum if lum is not None else np.broadcast_to(np.float32(0), colour.shape[:2])
-    lights = _check(shape, colour, lights, rank_window, shadow, iterations, estimator, tuning,
+    like = lum if lum is not None else np.broadcast_to(np.float32(0), colour.shape[:2])
+    lights = _check(like, colour, lights, rank_window, shadow, iterations, estimator, tuning,
                     tol, scale_floor)
-    n, p = shape.shape
+    n, p = like.shape
     lo, hi = rank_bounds(rank_window, n)
     if compiled and iterations == 0:
         return rank_window_normals(lum, colour, lights, lo, hi, shadow, div, weights)
@@ -121,7 +121,7 @@ def solve_normals_band(lum: npt.NDArray[np.floating] | None, colour: npt.NDArray
         if weights is None:
             raise ValueError("lum None needs the luminance weights")
         lum = luminance_compiled(np.ascontiguousarray(colour), np.asarray(weights, np.float32),
-                                 div)
+                                 1.0 if colour.dtype == np.float32 else div)
     if div != 1.0:
         raise ValueError("colour as decoded (div != 1) needs the compiled rank window")
     c = TUNING[estimator] if tuning is None else float(tuning)

@@ -21,7 +21,7 @@ import numba
 import numpy as np
 import numpy.typing as npt
 
-from .compiled import unit
+from .compiled import SAMPLE_TYPES, unit
 from .luminance_kernel import luminance_rows
 
 _RIDGE = 1e-9
@@ -336,7 +336,7 @@ def kernel_rows(lum: npt.NDArray[np.floating] | None, colour: npt.NDArray[np.gen
     stand-in, the luminances then taken from ``colour`` with ``weights``."""
     if lum is not None:
         return np.ascontiguousarray(lum), np.zeros(3, np.float32)
-    if weights is None or colour.dtype not in (np.float32, np.uint8, np.uint16):
+    if weights is None or colour.dtype not in SAMPLE_TYPES:
         raise ValueError("the luminance is taken from a float32 or 8-/16-bit colour, with "
                          "its weights")
     return np.empty((colour.shape[0], 0), np.float32), np.asarray(weights, np.float32)
