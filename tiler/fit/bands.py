@@ -103,8 +103,10 @@ def hsh_band(band: Band, pinv: npt.NDArray[np.float32]) -> Out:
 
 def normals_band(band: npt.NDArray[np.generic], lights: Lights, *,
                  rank_window: tuple[float, float] = RANK_WINDOW,
-                 shadow: float = SHADOW_FRACTION, iterations: int = 0, div: float = 1.0) -> Out:
-    """Robust photometric stereo: ``normals (b, W, 3)`` unit, ``albedo (b, W, 3)``.
+                 shadow: float = SHADOW_FRACTION, iterations: int = 0, div: float = 1.0,
+                 albedo: bool = True) -> Out:
+    """Robust photometric stereo: ``normals (b, W, 3)`` unit, ``albedo (b, W, 3)`` (not with
+    ``albedo=False``: the normals alone, as a Ward fit needs them).
 
     The rank-window selection of :func:`lanterna.tiler.fit.models.fit_normals`, refined by
     ``iterations`` steps of Tukey IRLS (:func:`~lanterna.tiler.fit.normals.solve_normals_band`;
@@ -114,10 +116,12 @@ def normals_band(band: npt.NDArray[np.generic], lights: Lights, *,
     n, b, w, _ = band.shape
     # None: the solver takes the luminance itself (the rank window chunk by chunk, not stored)
     lum = None if band.dtype in SAMPLE_TYPES else luminance(band, div).reshape(n, -1)
-    nrm, albedo = solve_normals_band(lum, band.reshape(n, -1, 3), lights.astype(np.float64),
-                                     rank_window=rank_window, shadow=shadow,
-                                     iterations=iterations, div=div, weights=_WEIGHTS32)
-    return {"normals": nrm.reshape(b, w, 3), "albedo": albedo.reshape(b, w, 3)}
+    nrm, rho = solve_normals_band(lum, band.reshape(n, -1, 3), lights.astype(np.float64),
+                                  rank_window=rank_window, shadow=shadow, iterations=iterations,
+                                  div=div, weights=_WEIGHTS32, albedo=albedo)
+    if not albedo:
+        return {"normals": nrm.reshape(b, w, 3)}
+    return {"normals": nrm.reshape(b, w, 3), "albedo": rho.reshape(b, w, 3)}
 
 
 def normals_band_held_out(band: npt.NDArray[np.generic], lights: Lights,

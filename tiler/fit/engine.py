@@ -107,7 +107,8 @@ class _Solver:
         if {"normals", "ward"} & set(keys):
             physical = srgb_to_linear(floats) if self.linear else band
             nrm = fb.normals_band(physical, self.lights,
-                                  iterations=fb.IRLS_ITERATIONS if self.linear else 0, div=div)
+                                  iterations=fb.IRLS_ITERATIONS if self.linear else 0, div=div,
+                                  albedo="normals" in keys)  # Ward fits its own kd
             out["normals"] = nrm
             if "ward" in keys:
                 normals = np.asarray(nrm["normals"], np.float32)

@@ -43,7 +43,7 @@ def solve_normals_band(lum: npt.NDArray[np.floating] | None, colour: npt.NDArray
                        estimator: Estimator = "tukey", tuning: float | None = None,
                        tol: float = 1e-4, scale_floor: float = 1e-3,
                        compiled: bool = True, div: float = 1.0,
-                       weights: F32 | None = None) -> tuple[F32, F32]:
+                       weights: F32 | None = None, albedo: bool = True) -> tuple[F32, F32]:
     r"""Estimate normals and Lambert albedo by robust photometric stereo (Woodham + IRLS).
 
     Per pixel, with luminance samples :math:`Y_i` under unit lights :math:`l_i`:
@@ -103,7 +103,9 @@ def solve_normals_band(lum: npt.NDArray[np.floating] | None, colour: npt.NDArray
     normals : ndarray, shape (P, 3), float32
         Unit normals.
     albedo : ndarray, shape (P, 3), float32
-        Lambert albedo per channel, in the units of ``colour``.
+        Lambert albedo per channel, in the units of ``colour``; with ``albedo=False`` (a caller
+        that only needs the normals), ``(0, 3)`` from the compiled rank window, which then
+        skips it (the normals are the same; the numpy path fits it all the same).
 
     Raises
     ------
@@ -116,7 +118,7 @@ def solve_normals_band(lum: npt.NDArray[np.floating] | None, colour: npt.NDArray
     n, p = like.shape
     lo, hi = rank_bounds(rank_window, n)
     if compiled and iterations == 0:
-        return rank_window_normals(lum, colour, lights, lo, hi, shadow, div, weights)
+        return rank_window_normals(lum, colour, lights, lo, hi, shadow, div, weights, albedo)
     if lum is None:
         if weights is None:
             raise ValueError("lum None needs the luminance weights")
@@ -126,7 +128,7 @@ def solve_normals_band(lum: npt.NDArray[np.floating] | None, colour: npt.NDArray
         raise ValueError("colour as decoded (div != 1) needs the compiled rank window")
     c = TUNING[estimator] if tuning is None else float(tuning)
     normals = np.empty((p, 3), np.float32)
-    albedo = np.empty((p, 3), np.float32)
+    rho = np.empty((p, 3), np.float32)  # with albedo=False too (this path is the reference)
     for p0 in range(0, p, _CHUNK):
         part = slice(p0, min(p, p0 + _CHUNK))
         y = np.ascontiguousarray(np.asarray(lum[:, part], np.float64).T)  # (P, N) rows
@@ -139,8 +141,8 @@ def solve_normals_band(lum: npt.NDArray[np.floating] | None, colour: npt.NDArray
         den = np.maximum((ws * s).sum(axis=1), 1e-12)
         for ch in range(3):
             ic = np.ascontiguousarray(np.asarray(colour[:, part, ch], np.float64).T)
-            albedo[part, ch] = (ws * ic).sum(axis=1) / den
-    return normals, albedo
+            rho[part, ch] = (ws * ic).sum(axis=1) / den
+    return normals, rho
 
 
 def rank_bounds(rank_window: tuple[float, float], n: int) -> tuple[int, int]:

@@ -53,7 +53,7 @@ def _fused(lum: npt.NDArray[np.floating], colour: npt.NDArray[np.generic],
                     for q in range(m):
                         rt[q] -= np.int32(yh[q] < yi[q])
         keep_t = window(y, rank_t, train, lo_t, hi_t, shadow)
-        nrm_t, alb_t = fit_rows(y, keep_t, train, lights, colour, q0, d)
+        nrm_t, alb_t = fit_rows(y, keep_t, train, lights, colour, q0, d, True)
         for jh in range(h):
             i = held[jh]
             lx, ly = np.float32(lights[i, 0]), np.float32(lights[i, 1])

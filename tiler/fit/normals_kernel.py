@@ -81,11 +81,16 @@ def fit_chunk(y: npt.NDArray[np.generic], colour: npt.NDArray[np.generic],
     (:func:`ranks`)."""
     rows = np.arange(y.shape[0])
     rank = ranks(y)
-    nrm, alb = fit_rows(y, window(y, rank, rows, lo, hi, shadow), rows, lights, colour, q0, d)
+    with_albedo = albedo.shape[0] > 0
+    nrm, alb = fit_rows(y, window(y, rank, rows, lo, hi, shadow), rows, lights, colour, q0, d,
+                        with_albedo)
     for q in range(y.shape[1]):
         for c in range(3):
             normals[q0 + q, c] = nrm[c, q]
-            albedo[q0 + q, c] = alb[c, q]
+    if with_albedo:
+        for q in range(y.shape[1]):
+            for c in range(3):
+                albedo[q0 + q, c] = alb[c, q]
     return rank
 
 
@@ -154,11 +159,11 @@ def window(y: npt.NDArray[np.generic], rank: npt.NDArray[np.int32],
 @numba.njit(cache=True, nogil=True, error_model="numpy")
 def fit_rows(y: npt.NDArray[np.generic], keep: npt.NDArray[np.bool_],
              rows: npt.NDArray[np.intp], lights: npt.NDArray[np.float64],
-             colour: npt.NDArray[np.generic], q0: int, d: np.float32
+             colour: npt.NDArray[np.generic], q0: int, d: np.float32, with_albedo: bool
              ) -> tuple[npt.NDArray[np.float64], npt.NDArray[np.float64]]:
     """Normals and albedo ``(3, m)`` of the kept samples of the lights ``rows`` (summed in
-    their order); ``colour (N, P, 3)`` contiguous, read from pixel ``q0`` (each sample
-    :func:`~.compiled.unit` of ``d``).
+    their order; the albedo ``(3, 0)``, not fitted, unless ``with_albedo``); ``colour (N, P,
+    3)`` contiguous, read from pixel ``q0`` (each sample :func:`~.compiled.unit` of ``d``).
 
     Each loop over the pixels updates at most three sums, each its own array: LLVM vectorises
     a loop only when it can check at run time that its arrays do not overlap, and it gives up
@@ -187,6 +192,8 @@ def fit_rows(y: npt.NDArray[np.generic], keep: npt.NDArray[np.bool_],
         g0, g1, g2 = _solve3(a[0, q] + _RIDGE, a[1, q] + _RIDGE, a[2, q] + _RIDGE, a[3, q],
                              a[4, q], a[5, q], a[6, q], a[7, q], a[8, q])
         nrm[0, q], nrm[1, q], nrm[2, q] = _unit(g0, g1, g2)
+    if not with_albedo:
+        return nrm, np.empty((3, 0))
     den = np.zeros(m)
     shade = np.empty(3 * m)  # each pixel's shading, once per channel
     sums = np.zeros(3 * m)  # Σ s · I per pixel and channel, interleaved as stored
@@ -297,6 +304,8 @@ def _pixel(y: npt.NDArray[np.float64], colour: npt.NDArray[np.generic],
     g0, g1, g2 = _solve3(a00 + _RIDGE, a11 + _RIDGE, a22 + _RIDGE, a01, a02, a12, b0, b1, b2)
     nx, ny, nz = _unit(g0, g1, g2)
     normals[q, 0], normals[q, 1], normals[q, 2] = nx, ny, nz
+    if albedo.shape[0] == 0:  # not fitted
+        return
     den = 0.0
     r0 = r1 = r2 = 0.0
     for i in range(n):
@@ -312,21 +321,23 @@ def _pixel(y: npt.NDArray[np.float64], colour: npt.NDArray[np.generic],
 
 def rank_window_normals(lum: npt.NDArray[np.floating] | None, colour: npt.NDArray[np.generic],
                         lights: npt.NDArray[np.float64], lo: int, hi: int, shadow: float,
-                        div: float = 1.0, weights: npt.NDArray[np.float32] | None = None
+                        div: float = 1.0, weights: npt.NDArray[np.float32] | None = None,
+                        albedo: bool = True
                         ) -> tuple[npt.NDArray[np.float32], npt.NDArray[np.float32]]:
     """Normals and albedo ``(P, 3)`` float32 of ``lum (N, P)``, ``colour (N, P, 3)`` (float32
     or float64, or 8-/16-bit as decoded with ``div`` 255/65535: compiled for each) under unit
     ``lights (N, 3)``, from the samples ranked ``[lo, hi)`` and brighter than ``shadow`` × the
     pixel's maximum (checked by the caller).  ``lum`` None: the float32 luminance of ``colour``
     (float32 or 8-/16-bit) with ``weights``, taken chunk by chunk inside the kernel (the
-    values of :func:`~.luminance_kernel.luminance_compiled`, so the same results)."""
+    values of :func:`~.luminance_kernel.luminance_compiled`, so the same results).
+    ``albedo`` False: the albedo is not fitted (returned ``(0, 3)``; the normals the same)."""
     p = colour.shape[1]
     normals = np.empty((p, 3), np.float32)
-    albedo = np.empty((p, 3), np.float32)
+    rho = np.empty((p if albedo else 0, 3), np.float32)
     rows, w = kernel_rows(lum, colour, weights)
     _rank_window(rows, np.ascontiguousarray(colour), np.ascontiguousarray(lights, np.float64),
-                 lo, hi, float(shadow), normals, albedo, np.float32(div), w, lum is None)
-    return normals, albedo
+                 lo, hi, float(shadow), normals, rho, np.float32(div), w, lum is None)
+    return normals, rho
 
 
 def kernel_rows(lum: npt.NDArray[np.floating] | None, colour: npt.NDArray[np.generic],

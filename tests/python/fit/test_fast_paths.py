@@ -233,3 +233,35 @@ def test_pca_sample_from_disk_equals_the_sample_of_the_loaded_stack(tmp_path: Pa
         assert got.shape == (200, 9, 3)
         assert np.array_equal(got, ref)
     assert len(np.unique(ref)) > 100
+
+
+@pytest.mark.parametrize("n", [24, 70])
+def test_normals_without_their_albedo_are_the_same_bits(n: int, tmp_path: Path) -> None:
+    """A Ward fit needs the normals alone (it fits its own kd): ``albedo=False`` skips the
+    albedo's sums in the rank window (counted ranks and, past 64 lights, sorted) and leaves
+    every normal's bits as they were; a Ward fit's normals are a normals fit's."""
+    from lanterna.tiler.fit import normals_kernel as nk
+    from lanterna.tiler.fit.bands import _WEIGHTS32, normals_band
+    from lanterna.tiler.fit.engine import fit_stream
+    from lanterna.tiler.fit.normals import RANK_WINDOW, SHADOW_FRACTION, rank_bounds
+    from tests.python.fixtures.photos import spiral_lights
+
+    rng = np.random.default_rng(n)
+    lights = spiral_lights(n, (12.0, 80.0))
+    colour = np.rint(rng.random((n, 777, 3)) * 255).astype(np.uint8)
+    lo, hi = rank_bounds(RANK_WINDOW, n)
+    both = nk.rank_window_normals(None, colour, lights, lo, hi, SHADOW_FRACTION, 255.0,
+                                  _WEIGHTS32)
+    alone = nk.rank_window_normals(None, colour, lights, lo, hi, SHADOW_FRACTION, 255.0,
+                                   _WEIGHTS32, albedo=False)
+    assert np.array_equal(both[0].view(np.uint32), alone[0].view(np.uint32))
+    assert alone[1].shape == (0, 3) and both[1].shape == (777, 3) and both[1].max() > 0.1
+    band = colour.reshape(n, 21, 37, 3)
+    assert set(normals_band(band, lights, div=255.0, albedo=False)) == {"normals"}
+    if n <= 64:
+        (tmp_path / "w").mkdir()
+        (tmp_path / "n").mkdir()
+        ward = fit_stream(band, lights, ["ward"], tmp_path / "w").layers["ward"].channels()
+        normals = fit_stream(band, lights, ["normals"], tmp_path / "n").layers["normals"]
+        assert all(np.array_equal(ward[f"N{c}"], normals.channels()[f"N{c}"]) for c in "XYZ")
+        assert len(np.unique(ward["NX"])) > 20  # 8-bit normals, not all alike
