@@ -39,7 +39,7 @@ __all__ = ["ALPHA_PER_OCTAVE", "GLOSS_LIMITS", "MIN_COSI", "SATURATED", "Ward", 
 GLOSS_LIMITS = (0.03, 0.6)
 #: α values tried per halving of α: 1/α² doubles every ``ALPHA_PER_OCTAVE // 2`` steps, so the
 #: compiled fit squares the lobes of the α three steps before instead of computing them.
-ALPHA_PER_OCTAVE = 6
+ALPHA_PER_OCTAVE = 4
 
 
 def alpha_grid(limits: tuple[float, float] = GLOSS_LIMITS,

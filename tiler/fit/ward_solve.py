@@ -105,15 +105,40 @@ def snap_alpha(alpha: F64, limits: tuple[float, float]) -> F64:
     return out
 
 
+def doubling_stride(grid: F64) -> int:
+    """The steps after which the grid's first 1/α² doubles (to 1e-9): the default grid's 3,
+    the stride of its coarse pass; 1 where none does (every α is then tried in one pass)."""
+    qa = 1.0 / (np.asarray(grid, np.float64) ** 2)
+    for c in range(1, len(qa)):
+        if abs(qa[c] - 2.0 * qa[0]) <= 1e-9 * qa[c]:
+            return c
+    return 1
+
+
+def coarse_steps(grid: F64) -> tuple[int, npt.NDArray[np.intp]]:
+    """The search's coarse pass: every :func:`doubling_stride`-th index of ``grid`` from the
+    first, and the last; with the stride."""
+    stride = doubling_stride(grid)
+    idx = np.arange(0, len(grid), stride)
+    if idx[-1] != len(grid) - 1:
+        idx = np.append(idx, len(grid) - 1)
+    return stride, idx.astype(np.intp)
+
+
 def solve_ward_band(raw: F64, nrm: F64, lights: F64, grid: F64,
                     limits: tuple[float, float]) -> tuple[F64, F64, F64]:
     """Fit one band: ``raw (N, b, W, 3)``, ``nrm (b, W, 3)`` → kd, ks ``(b, W, 3)``, α ``(b, W)``.
 
-    Every α of ``grid`` is tried in order (the first of equal SSEs is kept); the best is then
-    stored as its gloss level's α (:func:`snap_alpha`), and kd, ks of a pixel with a specular
-    term are solved again at that α (a lobe test no longer applies), so the maps fit the α the
-    layer stores.  See :func:`~lanterna.tiler.fit.ward.fit_ward` for the model and the module
-    docstring for the constraint.
+    The search is coarse to fine: the α of :func:`coarse_steps` are tried in order (the first of
+    equal SSEs is kept); then, per pixel, the grid's α either side of its best (the wider
+    first), each kept where its SSE is smaller still, and on along the side that gave a better
+    one while each does, up to the next coarse α.  Where a pixel's SSE over the grid falls then
+    rises (one minimum, even a lopsided one, or a fall cut short by the lobe test), that is the
+    α the whole grid gives.  The
+    best is then stored as its gloss level's α (:func:`snap_alpha`), and kd, ks of a pixel with
+    a specular term are solved again at that α (a lobe test no longer applies), so the maps fit
+    the α the layer stores.  See :func:`~lanterna.tiler.fit.ward.fit_ward` for the model and
+    the module docstring for the constraint.
     """
     b, w = nrm.shape[:2]
     cosi, tan2, root = ward_terms(nrm, lights)
@@ -152,13 +177,45 @@ def solve_ward_band(raw: F64, nrm: F64, lights: F64, grid: F64,
     kd_b = np.zeros((b, w, 3))
     ks_b = np.zeros((b, w, 3))
     al_b = np.full((b, w), grid[-1])
-    for alpha in grid:
-        kd, ks, sse = solve(alpha * alpha, True)
-        better = sse < best
+
+    def keep(a2: F64 | float, alpha: F64 | float,
+             tried: npt.NDArray[np.bool_] | bool) -> npt.NDArray[np.bool_]:
+        """Solve at α (one, or one per pixel); keep it where tried and better."""
+        nonlocal best, kd_b, ks_b, al_b
+        kd, ks, sse = solve(a2, True)
+        better: npt.NDArray[np.bool_] = tried & (sse < best)
         best = np.where(better, sse, best)
         kd_b = np.where(better[..., None], kd, kd_b)
         ks_b = np.where(better[..., None], ks, ks_b)
         al_b = np.where(better, alpha, al_b)
+        return better
+
+    stride, coarse = coarse_steps(grid)
+    at = np.zeros((b, w), np.intp)  # the grid index of the best α so far
+    for k in coarse:
+        at = np.where(keep(grid[k] * grid[k], grid[k], True), k, at)
+    # the fine pass: the α either side of the best coarse one, then on along the side that
+    # gave a better one while each does (up to the next coarse α)
+    tried_coarse = np.zeros(len(grid), np.bool_)
+    tried_coarse[coarse] = True
+    centre = at
+
+    def step(k: npt.NDArray[np.intp], tried: npt.NDArray[np.bool_]) -> npt.NDArray[np.bool_]:
+        nonlocal at
+        inside = (k >= 0) & (k < len(grid))
+        kk = np.clip(k, 0, len(grid) - 1)
+        tried = tried & inside & ~tried_coarse[kk]
+        alpha = grid[kk]
+        better = keep(alpha * alpha, alpha, tried)
+        at = np.where(better, kk, at)
+        return better
+
+    step(centre - 1, np.ones((b, w), np.bool_))
+    step(centre + 1, np.ones((b, w), np.bool_))
+    way = np.sign(at - centre)
+    going = way != 0
+    for r in range(2, stride):
+        going = step(centre + way * r, going)
     al_s = snap_alpha(al_b, limits)
     kd, ks, _ = solve(al_s * al_s, False)
     again = (ks_b.max(axis=-1) > 0)[..., None]

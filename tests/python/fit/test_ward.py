@@ -11,6 +11,7 @@ import pytest
 
 from lanterna.cli import main
 from lanterna.tiler.fit import bands as fit_bands
+from lanterna.tiler.fit import ward_solve
 from lanterna.tiler.fit.models import leave_one_out, model_table, psnr
 from lanterna.tiler.fit.ward import GLOSS_LIMITS, alpha_grid, fit_ward, predict_ward, quantize_ward
 from tests.python.fixtures.photos import spiral_lights, write_collection
@@ -59,8 +60,41 @@ def test_grid_is_log_spaced_and_doubles_one_over_alpha_squared() -> None:
     lo, hi = GLOSS_LIMITS
     assert grid[-1] == lo and grid[0] >= hi and grid[1] < hi  # widest first, covers the limits
     assert np.all(np.diff(grid) < 0) and np.all(np.abs(np.diff(np.log(grid))) < 0.2)
-    # every third step halves α²: the compiled fit squares those lobes (exp(−2x) = exp(−x)²)
-    assert np.allclose(grid[3:] ** 2 * 2, grid[:-3] ** 2, rtol=1e-12, atol=0)
+    # every second step halves α²: the coarse pass runs along those, squaring each lobe for
+    # the next (exp(−2x) = exp(−x)²)
+    assert np.allclose(grid[2:] ** 2 * 2, grid[:-2] ** 2, rtol=1e-12, atol=0)
+    stride, coarse = ward_solve.coarse_steps(grid)
+    assert stride == 2 and coarse[0] == 0 and coarse[-1] == len(grid) - 1
+    assert np.array_equal(np.diff(coarse), np.full(len(coarse) - 1, 2))
+
+
+def test_coarse_steps_keep_both_ends_and_a_grid_that_never_doubles() -> None:
+    stride, coarse = ward_solve.coarse_steps(alpha_grid(per_octave=6))  # 27 α, doubling every 3
+    assert stride == 3 and list(coarse) == [*range(0, 27, 3), 26]
+    stride, coarse = ward_solve.coarse_steps(np.geomspace(0.6, 0.03, 24))
+    assert stride == 1 and np.array_equal(coarse, np.arange(24))  # every α, in one pass
+
+
+@pytest.mark.parametrize("per_octave", [4, 6])
+def test_coarse_to_fine_search_finds_the_whole_grids_alpha(
+        per_octave: int, monkeypatch: pytest.MonkeyPatch) -> None:
+    """On a glossy object (60 lights, each pixel's SSE over the grid falling to one minimum,
+    lopsided or cut short by the lobe test), the coarse pass and its fine one find the α a
+    search of every grid value finds, so the same kd and ks."""
+    obj, lights = _object(), _lights()
+    images = _render(obj, lights)
+    grid = alpha_grid(per_octave=per_octave)
+    fast = fit_ward(images, lights, obj["normals"], alphas=grid, compiled=False)
+    with monkeypatch.context() as m:  # every grid value in one pass
+        m.setattr(ward_solve, "coarse_steps", lambda g: (1, np.arange(len(g))))
+        whole = fit_ward(images, lights, obj["normals"], alphas=grid, compiled=False)
+    glossy = whole[1].max(axis=-1) > 1e-3
+    assert glossy.mean() > 0.5
+    assert np.array_equal(fast[2][glossy], whole[2][glossy])
+    assert np.abs(fast[0] - whole[0]).max() <= 1e-6 and np.abs(fast[1] - whole[1]).max() <= 1e-6
+    # and the compiled search is the same search
+    assert np.array_equal(fit_ward(images, lights, obj["normals"], alphas=grid)[2][glossy],
+                          fast[2][glossy])
 
 
 @pytest.mark.parametrize("compiled", [True, False])
@@ -90,7 +124,7 @@ def test_known_material_recovered_with_true_normals() -> None:
     assert kd.shape == ks.shape == (H, W, 3) and alpha.shape == (H, W)
     assert np.abs(kd - obj["kd"]).max() <= 0.02
     glossy = obj["ks"][..., 0] > 0
-    # α comes from a grid (~14 % steps) and the lobe's peak is ks/(4α²), so ks follows α²
+    # α comes from a grid (19 % steps) and the lobe's peak is ks/(4α²), so ks follows α²
     assert np.max(np.abs(ks - obj["ks"])[glossy] / obj["ks"][glossy]) <= 0.3
     rel = np.abs(alpha[glossy] - obj["alpha"][glossy]) / obj["alpha"][glossy]
     assert rel.max() <= 0.15 and np.median(rel) <= 0.05
