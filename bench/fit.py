@@ -372,6 +372,8 @@ def main() -> None:
     parser.add_argument("--tmp", default=None, help="scratch folder (needs disk: see docs)")
     parser.add_argument("--json", type=Path, help="write the result here")
     args = parser.parse_args()
+    if args.tmp is not None and not Path(args.tmp).is_dir():
+        parser.error(f"--tmp {args.tmp}: not a folder")
     big = args.what == "memory"
     if args.what == "one":  # runs in the other checkout's interpreter: its own lanterna
         print(json.dumps(one(args)))
