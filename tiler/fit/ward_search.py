@@ -24,7 +24,7 @@ from .exp_kernel import exp_neg
 
 _SQRT3 = 1.0 / math.sqrt(3.0)
 _SKIP = 50.0  # exp(-50) ≈ 2e-22: the sample adds nothing to a float64 sum
-LANES = 32  # pixels solved side by side: one parallel task, one vectorised loop
+LANES = 64  # pixels solved side by side: one vectorised loop (32: 3–13 % slower here)
 GROUP = 4  # lights summed per pass over the lanes
 
 
