@@ -38,7 +38,7 @@ def _ward(raw: npt.NDArray[np.generic], nrm: npt.NDArray[np.float64],
           grid: npt.NDArray[np.float64], qf: npt.NDArray[np.float64],
           coarse: npt.NDArray[np.intp], is_coarse: npt.NDArray[np.bool_],
           qa: npt.NDArray[np.float64], twice: npt.NDArray[np.bool_],
-          narrowing: npt.NDArray[np.bool_], chain: int, stride: int, min_cosi: float,
+          narrowing: npt.NDArray[np.bool_], stride: int, min_cosi: float,
           saturated: float, cos_max: float, min_lobe: int, lobe_width: float, lo: float, hi: float,
           kd_out: npt.NDArray[np.float32],
           ks_out: npt.NDArray[np.float32], al_out: npt.NDArray[np.float32], d: np.float32
@@ -53,13 +53,13 @@ def _ward(raw: npt.NDArray[np.generic], nrm: npt.NDArray[np.float64],
         samples = np.zeros(ng * 6 * LANES)  # [light, quantity, lane], padded ones add 0
         stats = np.zeros(_STATS * LANES)
         sums = np.empty(6 * LANES)
-        # SSE, kd (r, g, b), ks (r, g, b), α, its coarse step, of the best α so far
+        # SSE, kd (r, g, b), ks (r, g, b), α, its grid index, of the best α so far
         best = np.empty(9 * LANES)
         steps = np.empty(3 * LANES)  # per lane: α, tried, grid index
         centre = np.empty(LANES, np.intp)
         way = np.empty(LANES, np.intp)
         nearest = np.empty(ng)  # per light, the smallest tan²θh of the lanes
-        lobes = np.zeros(chain * ng * LANES)
+        lobes = np.zeros(ng * LANES)  # the coarse pass's last lobes, squared for the next
         qs = np.empty(LANES)
         for block in range(chunk * _CHUNK, min(blocks, (chunk + 1) * _CHUNK)):
             q0 = block * LANES
@@ -70,8 +70,8 @@ def _ward(raw: npt.NDArray[np.generic], nrm: npt.NDArray[np.float64],
                 if i >= n:  # a padding light (_samples wrote the lights, padding lanes excluded)
                     row[:] = np.inf
                 nearest[i] = row.min()
-            search(samples, stats, nearest, grid, coarse, qa, inv4, twice, narrowing, chain,
-                    cos_max, min_lobe, lobe_width, sums, lobes, best, steps)
+            search(samples, stats, nearest, grid, coarse, qa, inv4, twice, narrowing, cos_max,
+                    min_lobe, lobe_width, sums, lobes, best, steps)
             refine(samples, stats, grid, qf, is_coarse, stride, cos_max, min_lobe, lobe_width,
                     sums, best, steps, qs, centre, way)
             # the best α as its gloss level's, and kd, ks solved again there where ks > 0
@@ -163,9 +163,8 @@ def ward_band_compiled(raw: npt.NDArray[np.float32], nrm: npt.NDArray[np.floatin
     constants read at call time.
 
     The coarse pass runs the α of :func:`~.ward_solve.coarse_steps`; where its 1/α² is twice
-    the one a fixed number of its steps before (the chain, found from its first α; to 1e-9),
-    the lobes are squared instead of computed (and that 1/α² taken as exactly twice the
-    other)."""
+    the one before (to 1e-9: every step but an appended last one, on a grid that doubles), the
+    lobes are squared instead of computed (and that 1/α² taken as exactly twice the other)."""
     n, b, w, _ = raw.shape
     lf = np.ascontiguousarray(lights, np.float64)
     half = lf + np.array([0.0, 0.0, 1.0])
@@ -177,10 +176,9 @@ def ward_band_compiled(raw: npt.NDArray[np.float32], nrm: npt.NDArray[np.floatin
     is_coarse[coarse] = True
     qa = qf[coarse]
     twice = np.zeros(len(coarse), np.bool_)
-    chain = ws.doubling_stride(grid[coarse])
-    for k in range(chain, len(coarse)):
-        if abs(qa[k] - 2.0 * qa[k - chain]) <= 1e-9 * qa[k]:
-            qa[k] = 2.0 * qa[k - chain]
+    for k in range(1, len(coarse)):
+        if abs(qa[k] - 2.0 * qa[k - 1]) <= 1e-9 * qa[k]:
+            qa[k] = 2.0 * qa[k - 1]
             twice[k] = True
     # per coarse α, whether no later one is wider (its 1/α² smaller): the search may stop there
     narrowing = np.array([bool(np.all(qa[k + 1:] >= qa[k])) for k in range(len(qa))], np.bool_)
@@ -189,7 +187,7 @@ def ward_band_compiled(raw: npt.NDArray[np.float32], nrm: npt.NDArray[np.floatin
     al = np.empty(b * w, np.float32)
     _ward(compiled.kernel_samples(raw).reshape(n, b * w, 3),
           np.ascontiguousarray(nrm, np.float64).reshape(b * w, 3), lf, half,
-          grid, qf, coarse, is_coarse, qa, twice, narrowing, chain, stride, ws.MIN_COSI,
+          grid, qf, coarse, is_coarse, qa, twice, narrowing, stride, ws.MIN_COSI,
           ws.SATURATED,
           math.cos(math.radians(ws.MAX_SPECULAR_ANGLE)), ws.MIN_LOBE_SAMPLES, ws.LOBE_WIDTH,
           float(limits[0]), float(limits[1]), kd, ks, al, np.float32(div))

@@ -33,13 +33,13 @@ def search(samples: npt.NDArray[np.float64], stats: npt.NDArray[np.float64],
             nearest: npt.NDArray[np.float64], grid: npt.NDArray[np.float64],
             coarse: npt.NDArray[np.intp], qa: npt.NDArray[np.float64],
             inv4: npt.NDArray[np.float64], twice: npt.NDArray[np.bool_],
-            narrowing: npt.NDArray[np.bool_], chain: int, cos_max: float, min_lobe: int,
+            narrowing: npt.NDArray[np.bool_], cos_max: float, min_lobe: int,
             lobe_width: float, sums: npt.NDArray[np.float64], lobes: npt.NDArray[np.float64],
             best: npt.NDArray[np.float64], steps: npt.NDArray[np.float64]) -> None:
     """The coarse pass for one block (the α ``grid[coarse]``, with their 1/α² ``qa``):
-    ``best`` (SSE, kd, ks, α, grid index per lane) at the best of them.  A lobe slot is read
-    (``twice``) only for a group of lights computed ``chain`` steps before in this block: a
-    group skipped there is past :data:`_SKIP` here too, and skipped again.  Once every lane
+    ``best`` (SSE, kd, ks, α, grid index per lane) at the best of them.  ``lobes`` holds the
+    step before's, squared where ``twice``: a group of lights skipped there is past
+    :data:`_SKIP` here too, and skipped again.  Once every lane
     fails the lobe test, each later α would give every lane its Lambert fit again (never
     better): the search stops."""
     L = LANES
@@ -49,7 +49,7 @@ def search(samples: npt.NDArray[np.float64], stats: npt.NDArray[np.float64],
     best[8 * L:] = 0.0
     steps[L:2 * L] = 1.0  # every lane tries every coarse α
     for j in range(coarse.shape[0]):
-        _sums(samples, nearest, qa[j], inv4[j], lobe_width, sums, lobes, j % chain, twice[j])
+        _sums(samples, nearest, qa[j], inv4[j], lobe_width, sums, lobes, twice[j])
         steps[:L] = grid[coarse[j]]
         steps[2 * L:] = coarse[j]
         solve(stats, sums, steps, cos_max, min_lobe, best, False)
@@ -97,14 +97,14 @@ def refine(samples: npt.NDArray[np.float64], stats: npt.NDArray[np.float64],
 @numba.njit(cache=True, nogil=True)
 def _sums(samples: npt.NDArray[np.float64], nearest: npt.NDArray[np.float64], qa: float,
           inv4: float, lobe_width: float, sums: npt.NDArray[np.float64],
-          lobe: npt.NDArray[np.float64], s: int, twice: bool) -> None:
+          lobe: npt.NDArray[np.float64], twice: bool) -> None:
     """Per lane at one α: Σab, Σbb, Σby (r, g, b) over the samples in light order, and the
-    number of samples inside the lobe.  The lobe values go to slot ``s`` of ``lobe``: with
-    ``twice`` (this α's 1/α² is twice that of the α whose lobes the slot holds) they are those
-    squared, else :func:`~.exp_kernel.exp_neg` of x = tan²θh/α².  Branch-free over the lanes,
+    number of samples inside the lobe.  The lobe values go to ``lobe``: with ``twice`` (this
+    α's 1/α² is twice that of the α whose lobes it holds) they are those squared, else
+    :func:`~.exp_kernel.exp_neg` of x = tan²θh/α².  Branch-free over the lanes,
     so the loops vectorise (a sample with x > :data:`_SKIP` adds an exact 0, as if skipped); a
     group of lights whose smallest tan²θh over the lanes (``nearest``) puts every lane past
-    :data:`_SKIP` is skipped whole (then it is past it at every later α of its chain too)."""
+    :data:`_SKIP` is skipped whole (then it is past it at every later α of the pass too)."""
     sums[:] = 0.0
     L = LANES
     n = nearest.shape[0]  # a multiple of GROUP (padded with lights that add 0)
@@ -115,8 +115,8 @@ def _sums(samples: npt.NDArray[np.float64], nearest: npt.NDArray[np.float64], qa
         if far:
             continue
         sv = samples[i * 6 * L:(i + GROUP) * 6 * L]
-        ev = lobe[(s * n + i) * L:(s * n + i + GROUP) * L]
-        if twice:  # exp(−2x) = exp(−x)²: the lobe at this α from the one 3 α before
+        ev = lobe[i * L:(i + GROUP) * L]
+        if twice:  # exp(−2x) = exp(−x)²: the lobe at this α from the one before
             for q in range(L):
                 for j in range(GROUP):
                     x = sv[(6 * j + 1) * L + q] * qa
@@ -132,14 +132,21 @@ def _sums(samples: npt.NDArray[np.float64], nearest: npt.NDArray[np.float64], qa
             for j in range(GROUP):  # in light order: the same sums as one light at a time
                 o = 6 * j * L + q
                 inside += 1.0 if sv[o + L] * qa <= lobe_width else 0.0
-                bw = sv[o + 2 * L] * ev[j * L + q] * inv4
-                ab += sv[o] * bw
-                bb += bw * bw
-                br += bw * sv[o + 3 * L]
-                bg += bw * sv[o + 4 * L]
-                bl += bw * sv[o + 5 * L]
+                ab, bb, br, bg, bl = _add(sv, o, ev[j * L + q], inv4, ab, bb, br, bg, bl)
             sums[q], sums[L + q], sums[2 * L + q] = ab, bb, br
             sums[3 * L + q], sums[4 * L + q], sums[5 * L + q] = bg, bl, inside
+
+
+@numba.njit(cache=True, nogil=True, inline="always")
+def _add(sv: npt.NDArray[np.float64], o: int, e: float, inv4: float, ab: float, bb: float,
+         br: float, bg: float, bl: float) -> tuple[float, float, float, float, float]:
+    """One sample's terms (at ``sv[o + k·L]``: cosi, tan²θh, √(cosi/cosr), colour) added to a
+    lane's sums Σab, Σbb, Σby (r, g, b), its Ward term ``b`` = √(cosi/cosr)·``e``·``inv4``
+    (``e`` the lobe value, ``inv4`` 1/(4α²))."""
+    L = LANES
+    bw = sv[o + 2 * L] * e * inv4
+    return (ab + sv[o] * bw, bb + bw * bw, br + bw * sv[o + 3 * L], bg + bw * sv[o + 4 * L],
+            bl + bw * sv[o + 5 * L])
 
 
 @numba.njit(cache=True, nogil=True)
@@ -173,12 +180,7 @@ def sums_at(samples: npt.NDArray[np.float64], qs: npt.NDArray[np.float64], lobe_
                 x = sv[o + L] * qa
                 e = exp_neg(min(x, _SKIP)) if x <= _SKIP else 0.0
                 inside += 1.0 if x <= lobe_width else 0.0
-                bw = sv[o + 2 * L] * e * inv4
-                ab += sv[o] * bw
-                bb += bw * bw
-                br += bw * sv[o + 3 * L]
-                bg += bw * sv[o + 4 * L]
-                bl += bw * sv[o + 5 * L]
+                ab, bb, br, bg, bl = _add(sv, o, e, inv4, ab, bb, br, bg, bl)
             sums[q], sums[L + q], sums[2 * L + q] = ab, bb, br
             sums[3 * L + q], sums[4 * L + q], sums[5 * L + q] = bg, bl, inside
 

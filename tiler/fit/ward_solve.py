@@ -106,7 +106,7 @@ def snap_alpha(alpha: F64, limits: tuple[float, float]) -> F64:
 
 
 def doubling_stride(grid: F64) -> int:
-    """The steps after which the grid's first 1/α² doubles (to 1e-9): the default grid's 3,
+    """The steps after which the grid's first 1/α² doubles (to 1e-9): the default grid's 2,
     the stride of its coarse pass; 1 where none does (every α is then tried in one pass)."""
     qa = 1.0 / (np.asarray(grid, np.float64) ** 2)
     for c in range(1, len(qa)):
