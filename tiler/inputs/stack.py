@@ -70,6 +70,14 @@ DECODE_THREADS = max(1, min(8, os.cpu_count() or 1))
 #: Bytes libvips holds per image column for an open sequential decode (~1,500 lines of RGB:
 #: measured 145 MB for a 32,768-px-wide JPEG, 36 MB at 8,192 px).
 DECODER_BYTES_PER_COLUMN = 4608
+#: Rows of an image fetched from libvips at once in a sequential pass.  A fetch makes libvips
+#: allocate (and zero) buffers of the rows asked for at several steps of its pipeline, afresh at
+#: every fetch: for a band of 85 rows, 0.5 MB each, above the allocator's threshold for fresh
+#: pages from the kernel, so every fetch page-faulted them in.  Eight rows at a time (a JPEG's
+#: MCU row, or half of one) keep those buffers small and reused: one thread reading a 2048²
+#: 24-light stack in 85-row bands took 1.0 s (0.4 s of it in the kernel, 210,000 page faults),
+#: 0.67 s in 8-row strips (0.09 s, 55,000): docs/fitting.md "Speed, thirteenth pass".
+FETCH_ROWS = 8
 
 
 def to_tiled_tiff(path: Path, out: Path) -> Path:
@@ -210,9 +218,7 @@ class StackReader:
         self._open_pass(y0)
 
         def copy(i: int) -> float | None:
-            band, full_scale = self._fetch(i, y0, y1)
-            out[i] = band
-            return full_scale
+            return self._fetch(i, y0, y1, out[i])[1]
         scales = _in_runs(copy, n, pool)
         self._next_row = y1
         return (scales[0] or 1.0) if scales else 1.0
@@ -229,19 +235,27 @@ class StackReader:
                 img = _open_rgb(path)
                 self._regions.append((img, pyvips.Region.new(img)))
 
-    def _fetch(self, i: int, y0: int, y1: int) -> tuple[npt.NDArray[np.generic], float | None]:
-        """Rows ``y0:y1`` of image ``i`` as stored (a view of the decoded bytes)."""
+    def _fetch(self, i: int, y0: int, y1: int, out: npt.NDArray[np.generic] | None = None
+               ) -> tuple[npt.NDArray[np.generic], float | None]:
+        """Rows ``y0:y1`` of image ``i`` as stored, into ``out`` ``(y1 − y0, W, 3)`` if given;
+        a sequential pass fetches them :data:`FETCH_ROWS` at a time."""
         path, w, regions = self.files[i], self.shape[2], self._regions
-        # reopen: tiled files, each opened for these rows only (no decoder state kept)
+        # reopen: tiled files, each opened for these rows only (no decoder state kept) and
+        # fetched at once (in strips, each strip would decode its tiles again)
         img = _open_rgb(path, "random") if self.reopen else regions[i][0]
         region = pyvips.Region.new(img) if self.reopen else regions[i][1]
+        dtype = _NUMPY_FORMAT[img.format]
+        band = np.empty((y1 - y0, w, 3), dtype) if out is None else out
+        step = max(1, y1 - y0) if self.reopen else FETCH_ROWS
         try:
-            raw = region.fetch(0, y0, w, y1 - y0)
+            for s0 in range(y0, y1, step):
+                s1 = min(y1, s0 + step)
+                raw = region.fetch(0, s0, w, s1 - s0)
+                band[s0 - y0:s1 - y0] = np.frombuffer(raw, dtype).reshape(s1 - s0, w, 3)
         except pyvips.Error as err:
             self._regions = []
             first = str(err).strip().splitlines()[0] if str(err).strip() else "read error"
             raise LanternaInputError(path, f"cannot read image ({first})") from None
-        band = np.frombuffer(raw, _NUMPY_FORMAT[img.format]).reshape(y1 - y0, w, 3)
         return band, _FULL_SCALE.get(img.format)
 
     def native_rows(self, y0: int, y1: int, pool: Executor | None = None

@@ -53,6 +53,27 @@ def test_reader_bands_equal_load_stack(collection: tuple[list[Path], npt.NDArray
     assert np.array_equal(reader[7], full[7])
 
 
+@pytest.mark.parametrize("strip", [1, 3, 8, 64])
+def test_bands_read_in_strips_equal_the_whole_images(
+        collection: tuple[list[Path], npt.NDArray[np.float64]], strip: int,
+        monkeypatch: pytest.MonkeyPatch) -> None:
+    """A sequential pass fetches each image's rows from libvips ``FETCH_ROWS`` at a time; any
+    strip height, bands not a multiple of it included, gives the images' own bytes."""
+    files, _ = collection
+    monkeypatch.setattr(stack_module, "FETCH_ROWS", strip)
+    reader = StackReader(files)
+    whole = np.stack([np.ndarray(buffer=im.write_to_memory(), dtype=np.uint8,
+                                 shape=(H, W, 3)) for im in (
+        pyvips.Image.new_from_file(str(f)) for f in files)])
+    band = np.zeros((N, BAND, W, 3), np.uint8)
+    for y0 in range(0, H, BAND):
+        rows = min(BAND, H - y0)
+        assert reader.band_into(y0, y0 + rows, band[:, :rows]) == 255.0
+        assert np.array_equal(band[:, :rows], whole[:, y0:y0 + rows]), y0
+    native = reader.native_rows(3, 3 + 2 * strip + 1)  # a new pass, from a row inside a strip
+    assert all(np.array_equal(b, whole[i, 3:4 + 2 * strip]) for i, (b, _) in enumerate(native))
+
+
 @pytest.mark.parametrize("key", ["ptm", "ptm-lrgb", "hsh", "normals", "ward"])
 def test_banded_fit_equals_in_memory_fit(
         collection: tuple[list[Path], npt.NDArray[np.float64]], key: str) -> None:
