@@ -31,7 +31,7 @@ from lanterna.tiler.progress import Progress
 from . import bands as fb
 from .hsh import hsh_quantisation
 from .ptm import ptm_quantisation
-from .quantise_kernel import quantise_planes
+from .quantise_kernel import quantise_planes, unit_bytes
 from .ward import GLOSS_LIMITS
 
 #: Bytes of float coefficients a run may keep in memory instead of scratch files.
@@ -137,7 +137,7 @@ class Sinks:
             self._write("normals", encode_normals(np.asarray(outs["normals"]["normals"],
                                                              np.float32)))
         if "normals" in keys:
-            self._write("albedo", _to8(outs["normals"]["albedo"]))
+            self._write("albedo", unit_bytes(outs["normals"]["albedo"]))
         if "ward" in keys:
             for m in ("kd", "ks", "gloss"):
                 self._write(f"ward-{m}", np.asarray(outs["ward"][m], np.uint8))
@@ -201,12 +201,6 @@ class Sinks:
             colorspace, scale, bias,
             lambda c, k: planes[f"c{k.start // 3}" if c is None else f"{'rgb'[c]}{k.start // 3}"],
             files.get("ptm-lrgb-color"))
-
-
-def _to8(values: npt.NDArray[np.generic]) -> npt.NDArray[np.uint8]:
-    out: npt.NDArray[np.uint8] = np.clip(np.round(np.asarray(values, np.float64) * 255.0), 0,
-                                         255).astype(np.uint8)
-    return out
 
 
 def _svbrdf(maps: list[tuple[str, BandImage]], space: str) -> PlaneLayer:

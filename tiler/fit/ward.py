@@ -29,6 +29,7 @@ import numpy.typing as npt
 
 from lanterna.tiler.inputs.stack import StackReader
 
+from .quantise_kernel import unit_bytes
 from .ward_kernel import ward_band_compiled
 from .ward_solve import MIN_COSI, SATURATED, solve_ward_band, ward_terms
 
@@ -133,12 +134,14 @@ def fit_ward(stack: npt.NDArray[np.generic] | StackReader, lights: npt.NDArray[n
     if lights.shape != (n, 3) or normals.shape != (h, w, 3):
         raise ValueError(f"stack {stack.shape}, lights {lights.shape}, normals {normals.shape}")
     grid = alpha_grid() if alphas is None else np.asarray(alphas, np.float64)
+    lf = np.asarray(lights, np.float64)
+    if compiled and h <= band_rows:  # one band: the kernel's own maps (no copies)
+        return ward_band_compiled(np.asarray(stack), normals, lf, grid, gloss_limits, div)
     kd_out = np.empty((h, w, 3), np.float32)
     ks_out = np.empty((h, w, 3), np.float32)
     al_out = np.empty((h, w), np.float32)
-    lf = np.asarray(lights, np.float64)
     for y0 in range(0, h, band_rows):
-        nrm = np.asarray(normals[y0:y0 + band_rows], np.float64)
+        nrm = normals[y0:y0 + band_rows]
         b = nrm.shape[0]
         maps: tuple[npt.NDArray[np.floating], ...]
         if compiled:  # (N, b, W, 3) as decoded or float32, the kernel's input
@@ -147,14 +150,10 @@ def fit_ward(stack: npt.NDArray[np.generic] | StackReader, lights: npt.NDArray[n
         else:
             if div != 1.0:
                 raise ValueError("the numpy reference takes a float stack")
-            maps = solve_ward_band(np.asarray(stack[:, y0:y0 + b], np.float64), nrm, lf, grid,
-                                   gloss_limits)
+            maps = solve_ward_band(np.asarray(stack[:, y0:y0 + b], np.float64),
+                                   np.asarray(nrm, np.float64), lf, grid, gloss_limits)
         kd_out[y0:y0 + b], ks_out[y0:y0 + b], al_out[y0:y0 + b] = maps
     return kd_out, ks_out, al_out
-
-
-def _to8(values: npt.ArrayLike) -> npt.NDArray[np.uint8]:
-    return np.clip(np.round(np.asarray(values, np.float64) * 255.0), 0, 255).astype(np.uint8)
 
 
 def quantize_ward(normals: npt.NDArray[np.floating], kd: npt.NDArray[np.floating],
@@ -162,8 +161,8 @@ def quantize_ward(normals: npt.NDArray[np.floating], kd: npt.NDArray[np.floating
                   gloss_limits: tuple[float, float] = GLOSS_LIMITS) -> Ward:
     """Quantise the fitted maps to the uint8 layer maps (kd/ks linear 0–1, gloss via limits)."""
     lo, hi = gloss_limits
-    return Ward(np.asarray(normals, np.float32), _to8(kd), _to8(ks),
-                _to8((np.asarray(alpha, np.float64) - lo) / (hi - lo)), (lo, hi))
+    return Ward(np.asarray(normals, np.float32), unit_bytes(kd), unit_bytes(ks),
+                unit_bytes(alpha, lo, hi), (lo, hi))
 
 
 def render_ward(normals: npt.NDArray[np.floating], kd: npt.NDArray[np.floating],

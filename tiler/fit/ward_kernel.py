@@ -33,7 +33,7 @@ _STATS = 14
 
 
 @numba.njit(cache=True, parallel=True, nogil=True)
-def _ward(raw: npt.NDArray[np.generic], nrm: npt.NDArray[np.float64],
+def _ward(raw: npt.NDArray[np.generic], nrm: npt.NDArray[np.floating],
           lights: npt.NDArray[np.float64], half: npt.NDArray[np.float64],
           grid: npt.NDArray[np.float64], qf: npt.NDArray[np.float64],
           coarse: npt.NDArray[np.intp], is_coarse: npt.NDArray[np.bool_],
@@ -92,7 +92,7 @@ def _ward(raw: npt.NDArray[np.generic], nrm: npt.NDArray[np.float64],
 
 
 @numba.njit(cache=True, nogil=True, error_model="numpy")
-def _samples(raw: npt.NDArray[np.generic], q0: int, lanes: int, nrm: npt.NDArray[np.float64],
+def _samples(raw: npt.NDArray[np.generic], q0: int, lanes: int, nrm: npt.NDArray[np.floating],
              lights: npt.NDArray[np.float64], half: npt.NDArray[np.float64], min_cosi: float,
              saturated: float, samples: npt.NDArray[np.float64],
              stats: npt.NDArray[np.float64], d: np.float32) -> None:
@@ -186,9 +186,18 @@ def ward_band_compiled(raw: npt.NDArray[np.float32], nrm: npt.NDArray[np.floatin
     ks = np.empty((b * w, 3), np.float32)
     al = np.empty(b * w, np.float32)
     _ward(compiled.kernel_samples(raw).reshape(n, b * w, 3),
-          np.ascontiguousarray(nrm, np.float64).reshape(b * w, 3), lf, half,
+          _normals(nrm).reshape(b * w, 3), lf, half,
           grid, qf, coarse, is_coarse, qa, twice, narrowing, stride, ws.MIN_COSI,
           ws.SATURATED,
           math.cos(math.radians(ws.MAX_SPECULAR_ANGLE)), ws.MIN_LOBE_SAMPLES, ws.LOBE_WIDTH,
           float(limits[0]), float(limits[1]), kd, ks, al, np.float32(div))
     return kd.reshape(b, w, 3), ks.reshape(b, w, 3), al.reshape(b, w)
+
+
+def _normals(nrm: npt.NDArray[np.floating]) -> npt.NDArray[np.floating]:
+    """The normals as the kernel reads them: float32 as they are (the kernel widens each to
+    float64 as it reads it, the same values as a float64 copy, which took a 4 MB temporary a
+    band), any other type as float64."""
+    if nrm.dtype == np.float32:
+        return np.ascontiguousarray(nrm)
+    return np.ascontiguousarray(nrm, np.float64)

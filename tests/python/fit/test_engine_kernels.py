@@ -67,6 +67,19 @@ def test_compiled_ward_does_not_depend_on_how_pixels_are_grouped() -> None:
     assert whole[1].max() > 0.05  # some pixels are glossy
 
 
+def test_compiled_ward_reads_float32_normals_as_their_float64_values() -> None:
+    """The engine hands the kernel float32 normals as they are (no float64 copy a band): the
+    same bits as the float64 normals of the same values, in one band and in several."""
+    img, lights, normals = glossy_scene(seed=3)
+    n32 = normals.astype(np.float32)
+    n64 = n32.astype(np.float64)
+    for rows in (H, 5):
+        a, b = fit_ward(img, lights, n32, band_rows=rows), fit_ward(img, lights, n64,
+                                                                     band_rows=rows)
+        assert all(np.array_equal(x, y) for x, y in zip(a, b, strict=True)), rows
+    assert a[1].max() > 0.05  # some pixels are glossy
+
+
 @pytest.mark.parametrize("key", ["ptm", "hsh"])
 def test_fused_leave_one_out_equals_a_least_squares_refit(tmp_path: Path, key: str) -> None:
     """PSNR of every held-out light from an independent float64 fit on the training lights."""

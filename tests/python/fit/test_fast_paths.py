@@ -2,7 +2,8 @@
 8-/16-bit → float conversion of the sub-bands (:mod:`~lanterna.tiler.fit.unit_kernel` against
 ``stack.to_unit``), the luminance (:mod:`~lanterna.tiler.fit.luminance_kernel` against
 ``band @ weights``) and the quantisation of PTM/HSH planes (:mod:`~lanterna.tiler.fit.
-quantise_kernel` against ``ptm_quantize`` / ``hsh_quantize`` and the plane gather)."""
+quantise_kernel` against ``ptm_quantize`` / ``hsh_quantize`` and the plane gather) and of the
+maps stored as they are (``unit_bytes`` against numpy's round and clip)."""
 
 from __future__ import annotations
 
@@ -15,7 +16,7 @@ import pytest
 from lanterna.tiler.fit.bands import LUMINANCE_WEIGHTS, luminance
 from lanterna.tiler.fit.hsh import hsh_quantisation, hsh_quantize
 from lanterna.tiler.fit.ptm import ptm_quantisation, ptm_quantize
-from lanterna.tiler.fit.quantise_kernel import quantise_planes
+from lanterna.tiler.fit.quantise_kernel import quantise_planes, unit_bytes
 from lanterna.tiler.fit.unit_kernel import to_unit_compiled
 from lanterna.tiler.inputs.stack import to_unit
 
@@ -265,3 +266,24 @@ def test_normals_without_their_albedo_are_the_same_bits(n: int, tmp_path: Path) 
         normals = fit_stream(band, lights, ["normals"], tmp_path / "n").layers["normals"]
         assert all(np.array_equal(ward[f"N{c}"], normals.channels()[f"N{c}"]) for c in "XYZ")
         assert len(np.unique(ward["NX"])) > 20  # 8-bit normals, not all alike
+
+
+@pytest.mark.parametrize("dtype", [np.float32, np.float64])
+@pytest.mark.parametrize("limits", [(0.0, 1.0), (0.03, 0.6)])
+def test_unit_bytes_equal_numpys_round_and_clip(dtype: type, limits: tuple[float, float]
+                                                ) -> None:
+    """The albedo's and Ward's maps: ``clip(round((v − lo)/(hi − lo)·255), 0, 255)`` in
+    float64 (numpy's formula before), byte for byte, ties to even, out-of-range values clipped,
+    any shape."""
+    lo, hi = limits
+    rng = np.random.default_rng(11)
+    ties = lo + (np.arange(256) + 0.5) / 255 * (hi - lo)  # halfway between two levels
+    values = np.concatenate([rng.uniform(lo - 0.3, hi + 0.3, 5000), ties,
+                             lo + np.arange(256) / 255 * (hi - lo),
+                             [np.inf, -np.inf, 0.0, -0.0, lo, hi]]).astype(dtype)
+    ref = np.clip(np.round((values.astype(np.float64) - lo) / (hi - lo) * 255.0), 0,
+                  255).astype(np.uint8)
+    out = unit_bytes(values.reshape(-1, 2) if values.size % 2 == 0 else values, lo, hi)
+    assert out.dtype == np.uint8
+    assert np.array_equal(out.reshape(-1), ref)
+    assert out.min() == 0 and out.max() == 255
