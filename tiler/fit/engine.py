@@ -15,6 +15,7 @@ groups are those files.
 
 from __future__ import annotations
 
+import math
 from collections.abc import Callable, Iterable, Iterator, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -28,17 +29,14 @@ from lanterna.tiler.formats.planes import PlaneLayer
 from lanterna.tiler.formats.ptm_model import ptm_weights
 from lanterna.tiler.inputs.stack import StackReader
 from lanterna.tiler.progress import Progress
-from lanterna.tiler.render.shading import linear_to_srgb, srgb_to_linear
+from lanterna.tiler.render.shading import linear_to_srgb
 
 from . import bands as fb
 from . import held_out as ho  # its REPORT_PIXELS read at call time (tests change it)
-from .held_out import PREDICT, fused_rows, report
-from .hsh import hsh_design_matrix, hsh_pinv
+from .held_out import PREDICT, TwinStore, fused_rows, report
 from .linear_kernel import linear_band
 from .lrgb_kernel import lrgb_band_held_out_compiled
-from .normals import check_lights
 from .normals_held_out_kernel import MAX_LIGHTS
-from .ptm import ptm_design_matrix, ptm_pinv
 from .row_bands import (
     BAND_BUDGET,
     SUB_BAND_BUDGET,
@@ -51,6 +49,7 @@ from .row_bands import (
 )
 from .sample_kernel import report_indices
 from .sinks import Sinks
+from .solver import Solver
 from .sub_bands import SubBands
 from .unit_kernel import to_unit_compiled
 
@@ -58,63 +57,6 @@ Lights = npt.NDArray[np.float64]
 
 #: Models the engine fits, by CLI name.
 MODEL_KEYS = ("ptm", "ptm-lrgb", "hsh", "normals", "ward")
-
-
-@dataclass
-class _Solver:
-    """The pseudo-inverses (or checks) of the requested models for one set of lights."""
-
-    lights: Lights
-    keys: Sequence[str]
-    terms: int
-    linear: bool = False
-    pinv: dict[str, npt.NDArray[np.float32]] = field(default_factory=dict)
-
-    def __post_init__(self) -> None:
-        keys = set(self.keys)
-        key = next(iter(self.keys), "")
-        try:
-            if {"ptm", "ptm-lrgb"} & keys:
-                key = next(k for k in self.keys if k.startswith("ptm"))
-                pinv = ptm_pinv(ptm_design_matrix(self.lights))
-                self.pinv["ptm-lrgb"] = pinv.astype(np.float32)
-                self.pinv["ptm"] = (pinv * 255.0).astype(np.float32)
-            if "hsh" in keys:
-                key = "hsh"
-                self.pinv["hsh"] = hsh_pinv(hsh_design_matrix(self.lights, self.terms), self.terms)
-            if {"normals", "ward"} & keys:
-                key = "normals" if "normals" in keys else "ward"
-                check_lights(self.lights)
-        except ValueError as err:
-            raise ValueError(f"{key}: {err}") from None
-
-    def solve(self, band: npt.NDArray[np.generic], keys: Sequence[str] | None = None,
-              div: float = 1.0) -> dict[str, fb.Out]:
-        """The float outputs of every requested model (or of ``keys`` among them) for one band
-        (all of this solver's lights): ``band / div`` in 0–1, float32 or (photometric models
-        only, values as stored) 8-/16-bit as decoded."""
-        keys = self.keys if keys is None else keys
-        floats = cast("npt.NDArray[np.float32]", band)  # what every model but those takes
-        if div != 1.0 and (self.linear or set(keys) - {"normals", "ward"}):
-            raise ValueError("only the photometric models, as stored, read a band as decoded")
-        out: dict[str, fb.Out] = {}
-        if "ptm" in keys:
-            out["ptm"] = fb.ptm_rgb_band(floats, self.pinv["ptm"])
-        if "ptm-lrgb" in keys:
-            out["ptm-lrgb"] = fb.ptm_lrgb_band(floats, self.pinv["ptm-lrgb"])
-        if "hsh" in keys:
-            out["hsh"] = fb.hsh_band(floats, self.pinv["hsh"])
-        if {"normals", "ward"} & set(keys):
-            physical = srgb_to_linear(floats) if self.linear else band
-            nrm = fb.normals_band(physical, self.lights,
-                                  iterations=fb.IRLS_ITERATIONS if self.linear else 0, div=div,
-                                  albedo="normals" in keys)  # Ward fits its own kd
-            out["normals"] = nrm
-            if "ward" in keys:
-                normals = np.asarray(nrm["normals"], np.float32)
-                out["ward"] = {**fb.ward_band(physical, self.lights, normals, div),
-                               "normals": normals}
-        return out
 
 
 #: Per band: the outputs of its parts in row order (the linear models' whole band first, then
@@ -135,8 +77,8 @@ class _Step:
     A picklable callable, so a Dask worker can run it on the band it reads.
     """
 
-    full: _Solver
-    loo: _Solver | None
+    full: Solver
+    loo: Solver | None
     held: npt.NDArray[np.intp]
     train: npt.NDArray[np.intp]
     layers: bool
@@ -150,14 +92,16 @@ class _Step:
     #: the sampled twin's pixels fitted together, up to this many (0: each band's alone, as a
     #: Dask worker must: its bands' results come back one by one); the rest by :meth:`flush`
     twin_batch: int = 0
+    #: the sampled twin's pixels a pass is expected to keep at once (the first batch and a
+    #: band's), the room :attr:`_kept` is made with (it grows if they are more)
+    twin_room: int = 0
     #: the sub-band buffers, made where the step runs (never pickled)
     _buffers: SubBands = field(default_factory=SubBands, repr=False, compare=False)
-    #: the sampled twin's pixels not fitted yet (with ``twin_batch``)
-    _pending: list[npt.NDArray[np.float32]] = field(default_factory=list, repr=False,
-                                                     compare=False)
+    #: the sampled twin's pixels not fitted yet (with ``twin_batch``): ``_kept.pixels``
+    _kept: TwinStore = field(default_factory=TwinStore, repr=False, compare=False)
 
     def __getstate__(self) -> dict[str, Any]:
-        return {**self.__dict__, "_buffers": SubBands(), "_pending": []}
+        return {**self.__dict__, "_buffers": SubBands(), "_kept": TwinStore()}
 
     def __call__(self, band: npt.NDArray[np.generic], div: float = 1.0, y0: int = 0
                  ) -> _StepResult:
@@ -179,7 +123,6 @@ class _Step:
         rest = [k for k in keys if k not in WHOLE_BAND_KEYS]
         if rest:
             sampled = self.loo is not None and self.report_share < 1.0
-            twins: list[npt.NDArray[np.float32]] = []
             fused = self.loo is not None and rest == ["normals"] and not self.full.linear and \
                 len(self.full.lights) <= MAX_LIGHTS and not sampled
             for r0, piece, d in self._pieces(band, div, rest, fused or sampled):
@@ -194,20 +137,16 @@ class _Step:
                 if sampled:  # the twin's pixels of these rows, fitted in batches
                     idx = report_indices(y0 + r0, piece.shape[1], w, self.report_share)
                     flat = np.ascontiguousarray(piece).reshape(piece.shape[0], -1, 3)
-                    twin = np.take(flat, idx, axis=1)
-                    if d != 1.0:  # as decoded: the float twin's values
-                        unit = np.empty(twin.shape, np.float32)
-                        to_unit_compiled(twin, d, unit)
-                        twin = unit
-                    twins.append(twin)
+                    # kept as the piece is (as decoded: refitted so, by the kernels the layer's
+                    # fit has loaded, with the same results as its floats)
+                    self._kept.add(np.take(flat, idx, axis=1), self.twin_room, d)
                 elif self.loo is not None:
                     floats = cast("npt.NDArray[np.float32]", piece)  # _pieces: floats here
                     for k, err in self._held_out(floats, self.loo, rest).items():
                         sse[k] += err
                 parts.append(outs)
             if sampled and self.loo is not None:
-                self._pending.append(np.concatenate(twins, axis=1))  # (N, pixels, 3)
-                if sum(t.shape[1] for t in self._pending) >= self.twin_batch:
+                if self._kept.count >= self.twin_batch:
                     self._twin_errors(rest, sse, pixels)
                 else:
                     pixels.update(dict.fromkeys(rest, 0))
@@ -218,8 +157,9 @@ class _Step:
         rest = [k for k in self.full.keys if k not in WHOLE_BAND_KEYS]
         sse = {k: np.zeros(len(self.held)) for k in rest}
         pixels = dict.fromkeys(rest, 0)
-        if self._pending and self.loo is not None:
+        if self._kept.count and self.loo is not None:
             self._twin_errors(rest, sse, pixels)
+        self._kept = TwinStore()  # the pass is over: its room freed
         return sse, pixels
 
     def _twin_errors(self, keys: Sequence[str], sse: dict[str, npt.NDArray[np.float64]],
@@ -227,14 +167,14 @@ class _Step:
         """Fit the pending twin pixels as one ``(N, 1, pixels, 3)`` band: their squared errors
         added to ``sse``, their count set in ``pixels`` (fewer, longer calls than a band's
         few thousand pixels each: 25 bands of a 2048² Ward fit took 0.08 s so)."""
-        twin: npt.NDArray[np.float32] = np.concatenate(self._pending, axis=1)[:, None]
-        self._pending.clear()
+        twin = self._kept.pixels[:, None]
         assert self.loo is not None
         count = int(twin.shape[2])
         pixels.update(dict.fromkeys(keys, count))
         if count:
-            for k, err in self._held_out(twin, self.loo, keys).items():
+            for k, err in self._held_out(twin, self.loo, keys, self._kept.div).items():
                 sse[k] += err
+        self._kept.count = 0
 
     def _whole(self, band: npt.NDArray[np.generic], div: float, keys: Sequence[str],
                sse: dict[str, npt.NDArray[np.float64]]) -> dict[str, fb.Out]:
@@ -273,29 +213,34 @@ class _Step:
         0–1, of the rows a float sub-band of the budget holds.  An 8-/16-bit band's pieces stay
         as decoded (their kernels divide where they read, with the same results; a piece short
         of the whole band copied into one reused contiguous buffer, a quarter of the float
-        one's bytes at 8 bits) for a Ward fit of the values as stored whose report, if any,
-        is sampled (:meth:`_held_out` refits a float copy); else they are float sub-bands
-        (:class:`~.sub_bands.SubBands`).  The normals alone gained nothing from it (their
-        float sub-bands are cache-sized, and the conversion is a small part of their pass:
-        docs/fitting.md "Speed, ninth pass")."""
+        one's bytes at 8 bits) for a fit of the values as stored whose report, if any, is
+        sampled (:meth:`_held_out` refits a float copy); else they are float sub-bands
+        (:class:`~.sub_bands.SubBands`).  The normals alone gained nothing from it once (docs/
+        fitting.md "Speed, ninth pass"); with the rest of their pass faster, the conversion was
+        0.19 s of a 2048² normals fit's main thread, and the rank window reads a quarter of the
+        bytes ("Speed, thirteenth pass")."""
         n, _, w, _ = band.shape
         rows = sub_band_rows(n, w, WARD_BAND_BUDGET if "ward" in keys else SUB_BAND_BUDGET)
         if not (band.dtype in (np.uint8, np.uint16) and div != 1.0 and not self.full.linear
-                and (self.loo is None or twin) and "ward" in keys):
+                and (self.loo is None or twin)):
             for r0, piece in self._buffers.floats(band, div, rows):
                 yield r0, piece, 1.0
             return
         yield from self._buffers.as_decoded(band, div, rows)
 
-    def _held_out(self, band: npt.NDArray[np.float32], loo: _Solver, keys: Sequence[str]
-                  ) -> dict[str, npt.NDArray[np.float64]]:
-        """The squared errors on the held-out lights of ``band`` of the leave-one-out fits of
-        ``keys`` (the photometric models; :meth:`_whole` sums the others'): refitted on a copy
-        of the training images, and predicted."""
+    def _held_out(self, band: npt.NDArray[np.generic], loo: Solver, keys: Sequence[str],
+                  div: float = 1.0) -> dict[str, npt.NDArray[np.float64]]:
+        """The squared errors on the held-out lights of ``band`` (``band / div`` in 0–1) of the
+        leave-one-out fits of ``keys`` (the photometric models; :meth:`_whole` sums the
+        others'): refitted on a copy of the training images, and predicted."""
         sse: dict[str, npt.NDArray[np.float64]] = {}
         n = band.shape[0]
         actual = np.ascontiguousarray(band).reshape(n, -1)[self.held]
-        fitted = loo.solve(band[self.train], keys)
+        if div != 1.0:  # as decoded: the held-out images' floats
+            floats = np.empty(actual.shape, np.float32)
+            to_unit_compiled(actual, div, floats)
+            actual = floats
+        fitted = loo.solve(band[self.train], keys, div)
         for k in keys:
             sse[k] = np.zeros(len(self.held))
             for j, i in enumerate(self.held):
@@ -386,10 +331,10 @@ def fit_stream(images: Images, lights: Lights, keys: Sequence[str], scratch: Pat
     if unknown:
         raise ValueError(f"unknown model(s) {unknown}")
     rows = band_rows or auto_band_rows(n, w)
-    full = _Solver(lights, keys, terms, linear)
+    full = Solver(lights, keys, terms, linear)
     held = np.arange(0, n, holdout_every) if holdout_every else np.zeros(0, np.intp)
     train = np.setdiff1d(np.arange(n), held)
-    loo = _Solver(lights[train], keys, terms, linear) if len(held) else None
+    loo = Solver(lights[train], keys, terms, linear) if len(held) else None
     every = [*keys, *(m.key for m in extra)]
     sse = {k: np.zeros(len(held)) for k in every}
     sinks = Sinks(scratch, w, h)
@@ -398,11 +343,12 @@ def fit_stream(images: Images, lights: Lights, keys: Sequence[str], scratch: Pat
                        and isinstance(images, StackReader) else rows)
     limit = ho.REPORT_PIXELS if report_pixels is None else report_pixels
     share = 1.0 if limit <= 0 else min(1.0, limit / max(1, h * w))
+    batch = _twin_batch(n, w) if runner is None else 0
     step = _Step(full, loo, held, train, layers,
                  fused_rows(loo.keys, loo.pinv, loo.terms, lights, held, train)
                  if loo is not None else {},
                  [m.step for m in extra], [m.key for m in extra], share,
-                 _twin_batch(n, w) if runner is None else 0)
+                 batch, _twin_room(batch, share, h, w, max(y1 - y0 for y0, y1 in spans)))
     pixels = dict.fromkeys(every, 0)
     results: Iterable[tuple[int, _StepResult]]
     if runner is None:
@@ -441,3 +387,12 @@ def fit_stream(images: Images, lights: Lights, keys: Sequence[str], scratch: Pat
 def _twin_batch(n: int, width: int) -> int:
     """Pixels of the sampled twin fitted at once in a local pass: a float band's worth."""
     return max(width, BAND_BUDGET // max(1, n * 12))
+
+
+def _twin_room(batch: int, share: float, height: int, width: int, rows: int) -> int:
+    """The sampled twin's pixels a pass keeps at once, about: a batch (or the whole sample, if
+    fewer) and the tallest band's share (twice it, for the sample's spread), at least a row."""
+    if share >= 1.0:
+        return 0  # no sample: the twin is fitted with each band
+    return min(batch, math.ceil(share * height * width)) + math.ceil(2 * share * rows * width) \
+        + width

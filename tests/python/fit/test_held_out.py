@@ -105,3 +105,21 @@ def test_the_sampled_twin_fitted_in_batches_gives_the_same_report(
         for batch, quality in reports.items():
             assert quality[k]["pixels"] == count, (k, batch)
             assert np.allclose(quality[k]["psnr"], reports[0][k]["psnr"], atol=2e-3), (k, batch)
+
+
+def test_the_twin_store_keeps_its_pixels_in_order_as_it_grows() -> None:
+    """The sampled twin's pixels kept between bands: the filled part is every band's pixels
+    in order, whatever the room it was made with (too small: it grows), and a batch fitted
+    (``count = 0``) starts it again."""
+    from lanterna.tiler.fit.held_out import TwinStore
+
+    rng = np.random.default_rng(2)
+    pieces = [rng.random((5, k, 3), dtype=np.float32) for k in (3, 0, 9, 1, 40, 2)]
+    for room in (0, 4, 100):
+        store = TwinStore()
+        for i, piece in enumerate(pieces):
+            store.add(piece, room)
+            assert np.array_equal(store.pixels, np.concatenate(pieces[:i + 1], axis=1)), room
+        store.count = 0
+        store.add(pieces[2], room)
+        assert np.array_equal(store.pixels, pieces[2])
