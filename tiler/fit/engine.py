@@ -214,7 +214,7 @@ class _Step:
         as decoded (their kernels divide where they read, with the same results; a piece short
         of the whole band copied into one reused contiguous buffer, a quarter of the float
         one's bytes at 8 bits) for a fit of the values as stored whose report, if any, is
-        sampled (:meth:`_held_out` refits a float copy); else they are float sub-bands
+        sampled (:meth:`_held_out` refits its sample as decoded); else they are float sub-bands
         (:class:`~.sub_bands.SubBands`).  The normals alone gained nothing from it once (docs/
         fitting.md "Speed, ninth pass"); with the rest of their pass faster, the conversion was
         0.19 s of a 2048² normals fit's main thread, and the rank window reads a quarter of the

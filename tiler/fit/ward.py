@@ -136,7 +136,8 @@ def fit_ward(stack: npt.NDArray[np.generic] | StackReader, lights: npt.NDArray[n
     grid = alpha_grid() if alphas is None else np.asarray(alphas, np.float64)
     lf = np.asarray(lights, np.float64)
     if compiled and h <= band_rows:  # one band: the kernel's own maps (no copies)
-        return ward_band_compiled(np.asarray(stack), normals, lf, grid, gloss_limits, div)
+        return ward_band_compiled(np.asarray(stack[:, 0:h]), normals, lf, grid, gloss_limits,
+                                  div)
     kd_out = np.empty((h, w, 3), np.float32)
     ks_out = np.empty((h, w, 3), np.float32)
     al_out = np.empty((h, w), np.float32)

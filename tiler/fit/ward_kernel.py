@@ -177,7 +177,7 @@ def ward_band_compiled(raw: npt.NDArray[np.float32], nrm: npt.NDArray[np.floatin
     qa = qf[coarse]
     twice = np.zeros(len(coarse), np.bool_)
     for k in range(1, len(coarse)):
-        if abs(qa[k] - 2.0 * qa[k - 1]) <= 1e-9 * qa[k]:
+        if ws.doubles(qa[k], qa[k - 1]):
             qa[k] = 2.0 * qa[k - 1]
             twice[k] = True
     # per coarse α, whether no later one is wider (its 1/α² smaller): the search may stop there

@@ -105,12 +105,19 @@ def snap_alpha(alpha: F64, limits: tuple[float, float]) -> F64:
     return out
 
 
+def doubles(q: float, before: float) -> bool:
+    """Whether the 1/α² ``q`` is twice ``before`` (to 1e-9): then its lobes are those of
+    ``before`` squared (exp(−2x) = exp(−x)²)."""
+    return abs(q - 2.0 * before) <= 1e-9 * q
+
+
 def doubling_stride(grid: F64) -> int:
-    """The steps after which the grid's first 1/α² doubles (to 1e-9): the default grid's 2,
-    the stride of its coarse pass; 1 where none does (every α is then tried in one pass)."""
+    """The steps after which the grid's first 1/α² doubles (:func:`doubles`): the default
+    grid's 2, the stride of its coarse pass; 1 where none does (every α is then tried in one
+    pass)."""
     qa = 1.0 / (np.asarray(grid, np.float64) ** 2)
     for c in range(1, len(qa)):
-        if abs(qa[c] - 2.0 * qa[0]) <= 1e-9 * qa[c]:
+        if doubles(qa[c], qa[0]):
             return c
     return 1
 

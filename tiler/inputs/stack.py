@@ -261,7 +261,7 @@ class StackReader:
     def native_rows(self, y0: int, y1: int, pool: Executor | None = None
                     ) -> list[tuple[npt.NDArray[np.generic], float | None]]:
         """Rows ``y0:y1`` of every image as stored: per image ``(rows, W, 3)`` in its sample
-        format (a view of the decoded bytes) and the divisor to 0–1 (``None`` for float).
+        format (a copy of the decoded bytes) and the divisor to 0–1 (``None`` for float).
 
         A quarter of the float32 band's memory for 8-bit images; :func:`to_unit` of each gives
         exactly :meth:`rows`.  ``pool`` decodes the files in its threads (as :meth:`band_into`).
