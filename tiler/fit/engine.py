@@ -34,7 +34,7 @@ from lanterna.tiler.render.shading import linear_to_srgb
 from . import bands as fb
 from . import held_out as ho  # its REPORT_PIXELS read at call time (tests change it)
 from .held_out import PREDICT, TwinStore, fused_rows, report
-from .linear_kernel import linear_band
+from .linear_kernel import linear_band_coded
 from .lrgb_kernel import lrgb_band_held_out_compiled
 from .normals_held_out_kernel import MAX_LIGHTS
 from .row_bands import (
@@ -199,12 +199,14 @@ class _Step:
                 sse["ptm-lrgb"] = err
         for k in (k for k in keys if k in LINEAR_KEYS):
             rows = self.full.pinv[k] if self.layers else np.zeros((0, n), np.float32)
-            coeffs = np.empty((rows.shape[0], flat.shape[1]), np.float32)
             held = self.fused.get(k) if self.loo is not None else None
-            lo, hi, err = linear_band(flat, div, rows, coeffs, held_rows=held, held=self.held)
+            codes, row_lo, row_hi, err = linear_band_coded(flat, div, rows, w * c,
+                                                           held_rows=held, held=self.held)
             if held is not None:
                 sse[k] = err
-            outs[k] = {"coeffsByTerm": coeffs.reshape(-1, b, w, c), "lo": lo, "hi": hi}
+            if self.layers:  # held until the global range is known: 16 bits a coefficient
+                outs[k] = {"codes": codes, "rowLo": row_lo, "rowHi": row_hi,
+                           "lo": row_lo.min(axis=1), "hi": row_hi.max(axis=1)}
         return outs
 
     def _pieces(self, band: npt.NDArray[np.generic], div: float, keys: Sequence[str],

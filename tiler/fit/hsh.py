@@ -11,6 +11,7 @@ from lanterna.tiler.inputs.stack import StackReader
 from lanterna.tiler.limits import MAX_QUANTISATION
 
 from .bands import hsh_band
+from .spill_codes import round_trip
 
 
 def hsh_design_matrix(lights: npt.ArrayLike, terms: int) -> npt.NDArray[np.float32]:
@@ -73,7 +74,7 @@ def fit_hsh(images: npt.NDArray[np.uint8] | npt.NDArray[np.floating] | StackRead
         band = stack[:, y0:y0 + band_rows].astype(np.float32) * scale_in  # (N, b, W, 3)
         coeffs[y0:y0 + band_rows] = hsh_band(band, pinv)["coeffs"]
     span, lo = hsh_quantisation(coeffs.min(axis=(0, 1, 2)), coeffs.max(axis=(0, 1, 2)))
-    return Hsh(hsh_quantize(coeffs, span, lo), span, lo)
+    return Hsh(hsh_quantize(round_trip(coeffs), span, lo), span, lo)  # as the stream holds them
 
 
 def hsh_quantisation(lo: npt.ArrayLike, hi: npt.ArrayLike

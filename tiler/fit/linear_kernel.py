@@ -22,6 +22,7 @@ import numpy as np
 import numpy.typing as npt
 
 from . import compiled  # noqa: F401 - the threading layer, before any kernel runs
+from .spill_codes import code_row, mapped_codes, value_range
 
 _CHUNK = 1024  # samples per parallel task: the chunk's N × 1024 float32 stay in L2
 
@@ -48,6 +49,19 @@ def _accumulate(rows: npt.NDArray[np.float32], t: int, x: npt.NDArray[np.float32
         j += 1
 
 
+@numba.njit(cache=True, nogil=True, inline="always")
+def _held_error(held_rows: npt.NDArray[np.float32], i: int, x: npt.NDArray[np.float32],
+                actual: npt.NDArray[np.float32], pred: npt.NDArray[np.float32]) -> float:
+    """The squared error of held-out row ``i``'s predictions (clipped to 0–1) over the chunk."""
+    _accumulate(held_rows, i, x, pred)
+    one, zero = np.float32(1.0), np.float32(0.0)
+    total = 0.0
+    for q in range(pred.shape[0]):
+        v = min(max(pred[q], zero), one) - actual[q]
+        total += float(v) * float(v)
+    return total
+
+
 @numba.njit(cache=True, parallel=True, nogil=True)
 def _linear(band: npt.NDArray[np.generic], div: float, rows: npt.NDArray[np.float32],
             held_rows: npt.NDArray[np.float32], held: npt.NDArray[np.intp],
@@ -56,7 +70,6 @@ def _linear(band: npt.NDArray[np.generic], div: float, rows: npt.NDArray[np.floa
     n, s = band.shape
     k, h = rows.shape[0], held_rows.shape[0]
     d = np.float32(div)
-    one, zero = np.float32(1.0), np.float32(0.0)
     for chunk in numba.prange((s + _CHUNK - 1) // _CHUNK):
         s0, s1 = chunk * _CHUNK, min(s, (chunk + 1) * _CHUNK)
         m = s1 - s0
@@ -68,23 +81,10 @@ def _linear(band: npt.NDArray[np.generic], div: float, rows: npt.NDArray[np.floa
         for t in range(k):
             dst = out[t, at + s0:at + s1]
             _accumulate(rows, t, x, dst)
-            a, b = dst[0], dst[0]
-            for q in range(m):  # a NaN sticks (the caller refuses non-finite coefficients)
-                v = dst[q]
-                if v < a or v != v:
-                    a = v
-                if v > b or v != v:
-                    b = v
-            lo[chunk, t], hi[chunk, t] = a, b
+            lo[chunk, t], hi[chunk, t] = value_range(dst)
         pred = np.empty(m, np.float32)
         for i in range(h):
-            _accumulate(held_rows, i, x, pred)
-            actual = x[held[i]]
-            total = 0.0
-            for q in range(m):
-                v = min(max(pred[q], zero), one) - actual[q]
-                total += float(v) * float(v)
-            sse[chunk, i] = total
+            sse[chunk, i] = _held_error(held_rows, i, x, x[held[i]], pred)
 
 
 def linear_band(band: npt.NDArray[np.generic], div: float, rows: npt.NDArray[np.float32],
@@ -116,3 +116,57 @@ def linear_band(band: npt.NDArray[np.generic], div: float, rows: npt.NDArray[np.
         _linear(band, float(div), np.ascontiguousarray(rows, np.float32),
                 np.ascontiguousarray(hr, np.float32), hi_, out, at, lo, hi, sse)
     return lo.min(axis=0), hi.max(axis=0), sse.sum(axis=0)
+
+
+@numba.njit(cache=True, parallel=True, nogil=True)
+def _linear_coded(band: npt.NDArray[np.generic], div: float, rows: npt.NDArray[np.float32],
+                  held_rows: npt.NDArray[np.float32], held: npt.NDArray[np.intp],
+                  codes: npt.NDArray[np.uint16], row_lo: npt.NDArray[np.float32],
+                  row_hi: npt.NDArray[np.float32], sse: npt.NDArray[np.float64]) -> None:
+    n, s = band.shape
+    k, h = rows.shape[0], held_rows.shape[0]
+    b, r = codes.shape[1], codes.shape[2]
+    d = np.float32(div)
+    for y in numba.prange(b):
+        vals = np.empty((k, r), np.float32)  # the row's coefficients, then coded
+        x = np.empty((n, _CHUNK), np.float32)
+        pred = np.empty(_CHUNK, np.float32)
+        for c0 in range(0, r, _CHUNK):
+            m = min(r, c0 + _CHUNK) - c0
+            s0 = y * r + c0
+            for j in range(n):
+                src, xj = band[j, s0:s0 + m], x[j]
+                for q in range(m):
+                    xj[q] = np.float32(src[q]) / d
+            xv = x[:, :m]
+            for t in range(k):
+                _accumulate(rows, t, xv, vals[t, c0:c0 + m])
+            for i in range(h):
+                sse[y, i] += _held_error(held_rows, i, xv, xv[held[i]], pred[:m])
+        for t in range(k):
+            a, z = value_range(vals[t])
+            row_lo[t, y], row_hi[t, y] = a, z
+            code_row(vals[t], a, z, codes[t, y])
+
+
+def linear_band_coded(band: npt.NDArray[np.generic], div: float, rows: npt.NDArray[np.float32],
+                      width: int, held_rows: npt.NDArray[np.float32] | None = None,
+                      held: npt.NDArray[np.intp] | None = None
+                      ) -> tuple[npt.NDArray[np.uint16], npt.NDArray[np.float32],
+                                 npt.NDArray[np.float32], npt.NDArray[np.float64]]:
+    """:func:`linear_band` of a band of whole image rows (``S = b · width``), its coefficients
+    coded per row as it goes (:func:`~.spill_codes.encode_rows`, the same codes): ``codes
+    (K, b, width)``, the rows' ``lo``, ``hi`` ``(K, b)`` and the held-out squared errors."""
+    n, s = band.shape
+    k = rows.shape[0]
+    b = s // width if width else 0
+    hr = np.zeros((0, n), np.float32) if held_rows is None else held_rows
+    hi_ = np.zeros(0, np.intp) if held is None else np.ascontiguousarray(held, np.intp)
+    codes = mapped_codes((k, b, width))
+    row_lo = np.zeros((k, b), np.float32)
+    row_hi = np.zeros((k, b), np.float32)
+    sse = np.zeros((b, hr.shape[0]), np.float64)
+    if s:
+        _linear_coded(band, float(div), np.ascontiguousarray(rows, np.float32),
+                      np.ascontiguousarray(hr, np.float32), hi_, codes, row_lo, row_hi, sse)
+    return codes, row_lo, row_hi, sse.sum(axis=0)

@@ -31,6 +31,7 @@ from .pca import PCA_LABELS, PcaSpec, parse_spec
 from .pca_band import fit_pca, pca_models
 from .ptm import fit_ptm_lrgb, ptm_design_matrix, ptm_pinv, quantize_coefficients
 from .row_bands import auto_band_rows
+from .spill_codes import round_trip
 from .ward import Ward, fit_ward, quantize_ward
 
 Stack = npt.NDArray[np.float32]
@@ -99,7 +100,7 @@ def fit_ptm_rgb(images: Images, lights: Lights, *, band_rows: int = 64) -> Ptm:
     coeffs = np.empty((h, w, 3, 6), np.float32)
     for y0 in range(0, h, band_rows):
         coeffs[y0:y0 + band_rows] = ptm_rgb_band(images[:, y0:y0 + band_rows], pinv)["coeffs"]
-    q, scale, bias = quantize_coefficients(coeffs)
+    q, scale, bias = quantize_coefficients(coeffs, held=round_trip(coeffs))
     return Ptm(colorspace="rgb", coefficients=q, scale=scale, bias=bias)
 
 

@@ -18,6 +18,7 @@ from lanterna.tiler.inputs.stack import StackReader
 from lanterna.tiler.limits import MAX_QUANTISATION
 
 from .bands import LUMINANCE_WEIGHTS, ptm_lrgb_band
+from .spill_codes import round_trip
 
 __all__ = ["LUMINANCE_WEIGHTS", "fit_ptm_lrgb", "ptm_design_matrix", "ptm_pinv", "ptm_quantisation",
            "ptm_quantize", "quantize_coefficients"]
@@ -73,7 +74,7 @@ def ptm_pinv(basis: npt.NDArray[np.float64]) -> npt.NDArray[np.float64]:
 
 
 def quantize_coefficients(
-    coefficients: npt.NDArray[np.floating],
+    coefficients: npt.NDArray[np.floating], *, held: npt.NDArray[np.floating] | None = None,
 ) -> tuple[npt.NDArray[np.uint8], npt.NDArray[np.float32], npt.NDArray[np.int32]]:
     """Quantise float PTM coefficients to bytes with one scale and bias per coefficient.
 
@@ -88,6 +89,10 @@ def quantize_coefficients(
     ----------
     coefficients : ndarray, shape (..., 6)
         Coefficients in 0–255 units.
+    held : ndarray, same shape, optional
+        The values to quantise, if not the coefficients themselves: the fits pass theirs as a
+        streamed fit holds them (:func:`~lanterna.tiler.fit.spill_codes.round_trip`, within
+        the range of the coefficients), the range still the exact coefficients'.
 
     Returns
     -------
@@ -109,7 +114,8 @@ def quantize_coefficients(
     if not np.all(np.isfinite(flat)):
         raise ValueError("coefficients must be finite")
     scale, bias = ptm_quantisation(flat.min(axis=0), flat.max(axis=0))
-    return ptm_quantize(flat, scale, bias).reshape(a.shape), scale, bias
+    values = flat if held is None else np.asarray(held).reshape(flat.shape)
+    return ptm_quantize(values, scale, bias).reshape(a.shape), scale, bias
 
 
 def ptm_quantisation(lo: npt.ArrayLike, hi: npt.ArrayLike
@@ -202,5 +208,5 @@ def fit_ptm_lrgb(
         out = ptm_lrgb_band(band, pinv)
         coeffs[r0:r1] = out["coeffs"]
         rgb[r0:r1] = out["rgb"]
-    q, scale, bias = quantize_coefficients(coeffs)
+    q, scale, bias = quantize_coefficients(coeffs, held=round_trip(coeffs))
     return Ptm(colorspace="lrgb", coefficients=q, scale=scale, bias=bias, rgb=rgb)

@@ -32,40 +32,51 @@ from . import bands as fb
 from .hsh import hsh_quantisation
 from .ptm import ptm_quantisation
 from .quantise_kernel import quantise_planes, unit_bytes
+from .spill_codes import encode_rows
 from .ward import GLOSS_LIMITS
 
-#: Bytes of float coefficients a run may keep in memory instead of scratch files.
+#: Bytes of coefficient codes a run may keep in memory instead of scratch files.
 SPILL_MEMORY = 512 << 20
+_EMPTY = np.zeros((0, 0, 0), np.uint16)
 
 
 class Spill:
-    """Float coefficients appended band by band, with their running range.
+    """Coefficients appended band by band, with their running range, held as 16-bit codes per
+    image row (:mod:`~.spill_codes`: 2 bytes per coefficient).
 
     A spill whose whole image (``height`` rows) fits what is left of the run's ``budget``
-    (a one-item list shared by its spills, :data:`SPILL_MEMORY`) keeps its bands in memory; any
-    other writes them to a scratch file (4 bytes per coefficient per pixel on disk).
+    (a one-item list shared by its spills, :data:`SPILL_MEMORY`) keeps its codes in memory; any
+    other writes them to a scratch file.
     """
 
     def __init__(self, path: Path, height: int, budget: list[int] | None = None) -> None:
         self.path, self.height = path, height
         self.budget = budget if budget is not None else [SPILL_MEMORY]
         self.file: BinaryIO | None = None
-        self.held: list[npt.NDArray[np.float32]] | None = None
+        self.held: list[npt.NDArray[np.uint16]] | None = None
         self.lo: npt.NDArray[np.float64] | None = None
         self.hi: npt.NDArray[np.float64] | None = None
         self.shapes: list[tuple[int, ...]] = []
+        self.ranges: list[tuple[npt.NDArray[np.float32], npt.NDArray[np.float32]]] = []
 
     def append(self, values: npt.NDArray[np.float32]) -> None:
-        """Append a band ``(b, …, K)``; stored coefficient-major (``(K, b, …)``), so the solvers'
-        ``(K, pixels)`` products are written without a copy and reduced per row."""
+        """Append a band ``(b, …, K)``; stored coefficient-major (``(K, b, …)``)."""
         km = np.ascontiguousarray(np.moveaxis(values, -1, 0), np.float32)
         flat = km.reshape(km.shape[0], -1)
         self.append_by_term(km, flat.min(axis=1), flat.max(axis=1))
 
     def append_by_term(self, km: npt.NDArray[np.float32], band_lo: npt.NDArray[np.generic],
                        band_hi: npt.NDArray[np.generic]) -> None:
-        """Append a coefficient-major band ``(K, b, …)`` (kept, not copied) whose per-term
-        min and max are ``band_lo``, ``band_hi`` (as a compiled solver found them on the way)."""
+        """Append a coefficient-major band ``(K, b, …)`` whose per-term min and max are
+        ``band_lo``, ``band_hi``; its rows are coded here (:func:`~.spill_codes.encode_rows`)."""
+        self.append_codes(*encode_rows(km.reshape(km.shape[0], km.shape[1], -1)), band_lo,
+                          band_hi)
+
+    def append_codes(self, codes: npt.NDArray[np.uint16], row_lo: npt.NDArray[np.float32],
+                     row_hi: npt.NDArray[np.float32], band_lo: npt.NDArray[np.generic],
+                     band_hi: npt.NDArray[np.generic]) -> None:
+        """Append a band's codes ``(K, b, R)`` and its rows' ranges ``(K, b)``
+        (:func:`~.spill_codes.encode_rows`: kept, not copied) with its per-term min and max."""
         lo = np.asarray(band_lo, np.float64)
         hi = np.asarray(band_hi, np.float64)
         if not (np.all(np.isfinite(lo)) and np.all(np.isfinite(hi))):
@@ -73,31 +84,36 @@ class Spill:
         self.lo = lo if self.lo is None else np.minimum(self.lo, lo)
         self.hi = hi if self.hi is None else np.maximum(self.hi, hi)
         if self.held is None and self.file is None:  # the first band decides
-            total = km.nbytes // max(1, km.shape[1]) * self.height
+            total = codes.nbytes // max(1, codes.shape[1]) * self.height
             if total <= self.budget[0]:
                 self.budget[0] -= total
                 self.held = []
             else:
                 self.file = open(self.path, "wb")  # noqa: SIM115 - closed in bands()
-        self.shapes.append(km.shape)
+        self.shapes.append(codes.shape)
+        self.ranges.append((row_lo, row_hi))
         if self.held is not None:
-            self.held.append(km)  # a view keeps only the solver's own output alive
+            self.held.append(codes)
         else:
             assert self.file is not None
-            self.file.write(km.data)
+            self.file.write(np.ascontiguousarray(codes).data)
 
     def bands(self) -> Any:
-        """Yield the bands back in order, ``(K, b, …)`` (each freed, or the file deleted)."""
+        """Yield the bands back in order: their codes ``(K, b, R)`` and rows' ranges ``(K, b)``
+        (each band freed once it is yielded, or the file deleted at the end)."""
+        if self.held is None and self.file is None:
+            return
         if self.held is not None:
-            while self.held:
-                yield self.held.pop(0)
+            for i in range(len(self.held)):
+                codes, self.held[i] = self.held[i], _EMPTY
+                yield (codes, *self.ranges[i])
+                del codes
             return
-        if self.file is None:
-            return
+        assert self.file is not None
         self.file.close()
         with open(self.path, "rb") as f:
-            for shape in self.shapes:
-                yield np.fromfile(f, np.float32, math.prod(shape)).reshape(shape)
+            for shape, (row_lo, row_hi) in zip(self.shapes, self.ranges, strict=True):
+                yield np.fromfile(f, np.uint16, math.prod(shape)).reshape(shape), row_lo, row_hi
         self.path.unlink()
 
 
@@ -119,16 +135,18 @@ class Sinks:
 
     def _spill(self, name: str) -> Spill:
         if name not in self.spills:
-            self.spills[name] = Spill(self.scratch / f"{name}.f32", self.height, self.budget)
+            self.spills[name] = Spill(self.scratch / f"{name}.u16", self.height, self.budget)
         return self.spills[name]
 
     def take(self, outs: dict[str, fb.Out], keys: Sequence[str]) -> None:
         """Store one part of a band: the outputs of the models of ``keys`` that it holds."""
         keys = [k for k in keys if k in outs]
         for k in ("ptm", "ptm-lrgb", "hsh"):
-            if k in keys and "coeffsByTerm" in outs[k]:  # a compiled pass's, with its range
-                self._spill(k).append_by_term(np.asarray(outs[k]["coeffsByTerm"], np.float32),
-                                              outs[k]["lo"], outs[k]["hi"])
+            if k in keys and "codes" in outs[k]:  # a compiled pass's, coded where solved
+                o = outs[k]
+                self._spill(k).append_codes(np.asarray(o["codes"], np.uint16),
+                                            np.asarray(o["rowLo"], np.float32),
+                                            np.asarray(o["rowHi"], np.float32), o["lo"], o["hi"])
             elif k in keys:
                 self._spill(k).append(np.asarray(outs[k]["coeffs"], np.float32))
         if "ptm-lrgb" in keys:
@@ -182,10 +200,11 @@ class Sinks:
                                       3) for g in parts}
         bar = progress(f"quantising {key}", self.height) if progress else None
         done = 0
-        for values in spill.bands():  # (K, b, W[, 3])
-            k, b = values.shape[:2]
-            q = quantise_planes(values.reshape(k, b * self.width, -1), scale, bias, plan,
-                                hsh=key == "hsh")
+        channels = 1 if key == "ptm-lrgb" else 3
+        for codes, row_lo, row_hi in spill.bands():  # (K, b, W · channels), (K, b) twice
+            b = codes.shape[1]
+            q = quantise_planes(codes, row_lo, row_hi, scale, bias, plan, hsh=key == "hsh",
+                                channels=channels)
             for g, rows in zip(parts, q, strict=True):
                 writers[g].write(rows.reshape(b, self.width, 3))
             done += b

@@ -2,8 +2,9 @@
 8-/16-bit → float conversion of the sub-bands (:mod:`~lanterna.tiler.fit.unit_kernel` against
 ``stack.to_unit``), the luminance (:mod:`~lanterna.tiler.fit.luminance_kernel` against
 ``band @ weights``) and the quantisation of PTM/HSH planes (:mod:`~lanterna.tiler.fit.
-quantise_kernel` against ``ptm_quantize`` / ``hsh_quantize`` and the plane gather) and of the
-maps stored as they are (``unit_bytes`` against numpy's round and clip)."""
+quantise_kernel`, from a spill's 16-bit row codes, against ``ptm_quantize`` / ``hsh_quantize`` of
+the codes' values and the plane gather) and of the maps stored as they are (``unit_bytes``
+against numpy's round and clip)."""
 
 from __future__ import annotations
 
@@ -17,6 +18,7 @@ from lanterna.tiler.fit.bands import LUMINANCE_WEIGHTS, luminance
 from lanterna.tiler.fit.hsh import hsh_quantisation, hsh_quantize
 from lanterna.tiler.fit.ptm import ptm_quantisation, ptm_quantize
 from lanterna.tiler.fit.quantise_kernel import quantise_planes, unit_bytes
+from lanterna.tiler.fit.spill_codes import decode_rows, encode_rows
 from lanterna.tiler.fit.unit_kernel import to_unit_compiled
 from lanterna.tiler.inputs.stack import to_unit
 
@@ -56,13 +58,20 @@ def _coefficients(k: int, channels: tuple[int, ...], seed: int) -> np.ndarray:
     return values
 
 
+def _coded(values: npt.NDArray[np.float32]) -> tuple[tuple[npt.NDArray[np.generic], ...],
+                                                     npt.NDArray[np.float32]]:
+    """A spill's codes of ``values (K, rows, …)`` and rows' ranges, and the codes' values."""
+    codes = encode_rows(values.reshape(values.shape[0], values.shape[1], -1))
+    return codes, decode_rows(*codes).reshape(values.shape)
+
+
 def test_ptm_planes_equal_numpy_quantisation_and_gather() -> None:
-    values = _coefficients(6, (3,), 1)
+    codes, values = _coded(_coefficients(6, (3,), 1))
     flat = values.reshape(6, -1)
     scale, bias = ptm_quantisation(flat.min(axis=1), flat.max(axis=1) * 0.8)  # some clip at 255
     q = ptm_quantize(values, scale.reshape(-1, 1, 1, 1), bias.reshape(-1, 1, 1, 1))
     plan = np.array([[(3 * g + j, c) for j in range(3)] for c in range(3) for g in range(2)])
-    planes = quantise_planes(values.reshape(6, -1, 3), scale, bias, plan, hsh=False)
+    planes = quantise_planes(*codes, scale, bias, plan, hsh=False, channels=3)
     assert planes.shape == (6, 66, 3)
     for p, (c, g) in enumerate((c, g) for c in range(3) for g in range(2)):
         ref = np.moveaxis(q[3 * g:3 * g + 3, :, :, c], 0, -1).reshape(-1, 3)
@@ -71,23 +80,23 @@ def test_ptm_planes_equal_numpy_quantisation_and_gather() -> None:
 
 
 def test_lrgb_planes_equal_numpy_quantisation() -> None:
-    values = _coefficients(6, (), 2)
+    codes, values = _coded(_coefficients(6, (), 2))
     flat = values.reshape(6, -1)
     scale, bias = ptm_quantisation(flat.min(axis=1), flat.max(axis=1))
     q = ptm_quantize(values, scale.reshape(-1, 1, 1), bias.reshape(-1, 1, 1))
     plan = np.array([[(3 * g + j, 0) for j in range(3)] for g in range(2)])
-    planes = quantise_planes(values.reshape(6, -1, 1), scale, bias, plan, hsh=False)
+    planes = quantise_planes(*codes, scale, bias, plan, hsh=False, channels=1)
     for g in range(2):
         assert np.array_equal(planes[g], np.moveaxis(q[3 * g:3 * g + 3], 0, -1).reshape(-1, 3))
 
 
 def test_hsh_planes_equal_numpy_quantisation() -> None:
-    values = _coefficients(9, (3,), 4)
+    codes, values = _coded(_coefficients(9, (3,), 4))
     flat = values.reshape(9, -1)
     scale, bias = hsh_quantisation(flat.min(axis=1) * 0.9, flat.max(axis=1) * 0.9)
     q = hsh_quantize(values, scale.reshape(-1, 1, 1, 1), bias.reshape(-1, 1, 1, 1))
     plan = np.array([[(t, c) for c in range(3)] for t in range(9)])
-    planes = quantise_planes(values.reshape(9, -1, 3), scale, bias, plan, hsh=True)
+    planes = quantise_planes(*codes, scale, bias, plan, hsh=True, channels=3)
     for t in range(9):
         assert np.array_equal(planes[t], q[t].reshape(-1, 3))
     assert len(np.unique(planes)) > 200  # the test exercises the whole byte range
@@ -125,16 +134,20 @@ def test_compiled_luminance_gives_the_formulas_bits() -> None:
 @pytest.mark.parametrize("hsh", [True, False])
 def test_planes_of_whole_terms_equal_the_gather_across_chunks(hsh: bool) -> None:
     """Planes that each hold one term's R, G, B (HSH's, here in a shuffled term order) take the
-    run-per-term path; over several of its chunks, with either formula, the bytes are those of
-    the general gather (channels permuted: the general path) and of numpy's formula."""
-    values = np.random.default_rng(5).normal(0.0, 3.0, (5, 9001, 3)).astype(np.float32)
+    run-per-term path; over several rows, with either formula, the bytes are those of the
+    general gather (channels permuted: the general path) and of numpy's formula."""
+    raw = np.random.default_rng(5).normal(0.0, 3.0, (5, 9, 1001, 3)).astype(np.float32)
+    raw[1, 4] *= np.float32(0.01)  # a row of a much narrower range than its term's
+    codes, values = _coded(raw)
+    values = values.reshape(5, -1, 3)
     flat = values.reshape(5, -1)
     quant = hsh_quantisation if hsh else ptm_quantisation
     scale, bias = quant(flat.min(axis=1) * 0.9, flat.max(axis=1) * 0.9)
     order = [3, 0, 4, 1]
     plan = np.array([[(t, c) for c in range(3)] for t in order])
-    planes = quantise_planes(values, scale, bias, plan, hsh=hsh)
-    swapped = quantise_planes(values, scale, bias, plan[:, ::-1], hsh=hsh)  # B, G, R: gathered
+    planes = quantise_planes(*codes, scale, bias, plan, hsh=hsh, channels=3)
+    swapped = quantise_planes(*codes, scale, bias, plan[:, ::-1], hsh=hsh,
+                              channels=3)  # B, G, R: gathered
     formula = hsh_quantize if hsh else ptm_quantize
     q = formula(values, scale.reshape(-1, 1, 1), bias.reshape(-1, 1, 1))
     for g, t in enumerate(order):

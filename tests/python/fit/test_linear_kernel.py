@@ -79,3 +79,28 @@ def test_no_samples() -> None:
     lo, hi, sse = linear_band(np.zeros((5, 0), np.uint8), 255.0, np.ones((2, 5), np.float32),
                               np.empty((2, 0), np.float32))
     assert lo.shape == hi.shape == (2,) and sse.shape == (0,)
+
+
+@pytest.mark.parametrize(("n", "b", "width", "k"), [(24, 5, 2049, 9), (7, 3, 4, 6), (9, 3, 1, 1)])
+def test_coded_band_is_the_band_coded_per_row(n: int, b: int, width: int, k: int) -> None:
+    """:func:`linear_band_coded` — the streamed fit's pass — stores the codes
+    :func:`~lanterna.tiler.fit.spill_codes.encode_rows` makes of :func:`linear_band`'s
+    coefficients (the same float32 sums, rows of several chunks), with the same errors."""
+    from lanterna.tiler.fit.linear_kernel import linear_band_coded
+    from lanterna.tiler.fit.spill_codes import encode_rows
+
+    band, rows, held_rows = _case(n, b * width, k, seed=4)
+    held = np.array([0, n // 2, n - 1])
+    out = np.empty((k, b * width), np.float32)
+    lo, hi, sse = linear_band(band, 255.0, rows, out, held_rows=held_rows, held=held)
+    codes, row_lo, row_hi, coded_sse = linear_band_coded(band, 255.0, rows, width,
+                                                         held_rows=held_rows, held=held)
+    ref_codes, ref_lo, ref_hi = encode_rows(out.reshape(k, b, width))
+    assert codes.shape == (k, b, width)
+    assert np.array_equal(codes, ref_codes)
+    assert np.array_equal(row_lo, ref_lo) and np.array_equal(row_hi, ref_hi)
+    assert np.array_equal(row_lo.min(axis=1), lo) and np.array_equal(row_hi.max(axis=1), hi)
+    np.testing.assert_allclose(coded_sse, sse, rtol=1e-12)
+    wide = row_hi > row_lo  # each row's codes run 0–65535; a flat row's (one pixel) are 0
+    assert np.array_equal(codes.min(axis=2), np.zeros_like(row_lo, np.uint16))
+    assert np.array_equal(codes.max(axis=2), np.where(wide, 65535, 0))
