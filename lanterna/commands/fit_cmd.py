@@ -70,7 +70,7 @@ def register(sub: SubParsers) -> None:
                      help="image rows read and solved at once (default: what fits 48 MB)")
     fit.add_argument("--scratch", type=Path, metavar="DIR",
                      help="folder for the temporary planes (default: beside the output); "
-                          "needs ~4 bytes per PTM/HSH coefficient per pixel")
+                          "needs ~2 bytes per PTM/HSH coefficient per pixel")
     fit.add_argument("--scheduler", metavar="ADDRESS",
                      help="solve the row bands on a Dask cluster (tcp://host:8786, or local[:N] "
                           "for N local worker processes); needs dask[distributed]")

@@ -8,9 +8,9 @@ them by one product, :func:`~.held_out.fused_rows`) — so the images are decode
 the number of models.
 
 Memory is bounded by the band, not the image: each band's outputs go to file-backed planes or,
-for the globally quantised PTM/HSH coefficients, to a float spill quantised in a second pass
-(:mod:`.sinks`). The results are :class:`~lanterna.tiler.formats.planes.PlaneLayer` s whose
-groups are those files.
+for the globally quantised PTM/HSH coefficients, to a spill of 16-bit codes per row quantised in
+a second pass (:mod:`.sinks`, :mod:`.spill_codes`). The results are
+:class:`~lanterna.tiler.formats.planes.PlaneLayer` s whose groups are those files.
 """
 
 from __future__ import annotations

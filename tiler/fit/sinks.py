@@ -2,9 +2,9 @@
 
 Per-pixel encodings (normal maps, Ward maps, the LRGB colour plane) are written straight to
 file-backed planes (:class:`~lanterna.tiler.formats.strip_tiff.StripTiffWriter`); PTM/HSH
-coefficients need their global range before they can be quantised, so their floats are appended
-to a :class:`Spill` (in memory up to :data:`SPILL_MEMORY`, then 4 bytes per coefficient per pixel
-on disk) with the running min/max, and
+coefficients need their global range before they can be quantised, so they are appended to a
+:class:`Spill` as 16-bit codes over each image row's range (:mod:`.spill_codes`; in memory up to
+:data:`SPILL_MEMORY`, then 2 bytes per coefficient per pixel on disk) with the running min/max, and
 :meth:`Sinks.finish` makes a second, sequential pass over it that writes the 8-bit planes.
 """
 
