@@ -4,13 +4,20 @@ trip the streamed fit's bytes are compared with."""
 
 from __future__ import annotations
 
+import numba
 import numpy as np
 import numpy.typing as npt
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from lanterna.tiler.fit.hsh import hsh_quantisation, hsh_quantize
-from lanterna.tiler.fit.spill_codes import decode_rows, encode_rows, mapped_codes, round_trip
+from lanterna.tiler.fit.spill_codes import (
+    decode_rows,
+    encode_rows,
+    mapped_codes,
+    round_trip,
+    value_range,
+)
 
 
 def _values(seed: int, shape: tuple[int, int, int], magnitude: float, offset: float
@@ -96,3 +103,36 @@ def test_mapped_codes_are_writable_pages_of_their_own() -> None:
     small = mapped_codes((2, 3))
     small[...] = 1
     assert small.sum() == 6
+
+
+_SPECIAL = [0.0, -0.0, np.inf, -np.inf, 1e-45, -1e-45, 3.4e38, -3.4e38, 1.0, -1.0]
+
+
+def _row_range(row: npt.NDArray[np.float32]) -> tuple[float, float]:
+    """:func:`value_range` called from compiled code, as the kernels call it."""
+    return tuple(float(v) for v in numba.njit(lambda r: value_range(r))(row))  # type: ignore[return-value]
+
+
+@settings(max_examples=80, deadline=None)
+@given(st.lists(st.one_of(st.floats(width=32, allow_nan=False), st.sampled_from(_SPECIAL)),
+                min_size=1, max_size=70))
+def test_value_range_is_the_rows_min_and_max(values: list[float]) -> None:
+    """The integer-keyed range equals the floats' own, at every length (the vectorised body
+    and its remainder), with infinities, denormals and both zeros (−0.0 below +0.0)."""
+    row = np.array(values, np.float32)
+    lo, hi = _row_range(row)
+    assert lo == row.min() and hi == row.max()
+    zeros = row[row == 0]
+    if lo == 0:
+        assert np.signbit(lo) == bool(np.signbit(zeros).any())
+    if hi == 0:
+        assert np.signbit(hi) == bool(np.signbit(zeros).all())
+
+
+@settings(max_examples=30, deadline=None)
+@given(st.integers(1, 70), st.integers(0, 69), st.booleans())
+def test_a_nan_in_a_row_comes_back_in_its_range(n: int, at: int, negative: bool) -> None:
+    row = np.linspace(-3, 5, n).astype(np.float32)
+    row[at % n] = -np.nan if negative else np.nan
+    lo, hi = _row_range(row)
+    assert not (np.isfinite(lo) and np.isfinite(hi))
