@@ -118,13 +118,21 @@ def mapped_codes(shape: tuple[int, ...]) -> npt.NDArray[np.uint16]:
     """An uninitialised uint16 array in pages of its own (an anonymous map, unmapped when the
     array is freed): a band's codes are freed while the layer's planes are written, and pages
     given back to the system serve those files' page cache at once, where freed heap (the
-    allocator keeps what lies below its top) would leave the cache to take fresh pages."""
+    allocator keeps what lies below its top) would leave the cache to take fresh pages.
+
+    In small pages (``MADV_NOHUGEPAGE`` where the system has it): the codes are written once
+    and read once, in order, so a huge page's fewer TLB misses gain little, and its first
+    touch is what a virtual machine that reports free memory to its host (free page
+    reporting, from 2 MB blocks up) makes slow — the block is unbacked and the host backs it
+    anew.  Measured on this project's VM: 216 MB mapped a band at a time and touched, after
+    a few idle seconds, 0.32–0.46 s with huge pages against 0.10–0.13 s in small ones, which
+    come from free lists the host still backs (docs/fitting.md "Speed, sixteenth pass")."""
     size = math.prod(shape) * 2
     if size < mmap.PAGESIZE:
         return np.empty(shape, np.uint16)
     pages = mmap.mmap(-1, size, flags=mmap.MAP_PRIVATE | mmap.MAP_ANONYMOUS)
-    if hasattr(mmap, "MADV_HUGEPAGE"):
-        pages.madvise(mmap.MADV_HUGEPAGE)
+    if hasattr(mmap, "MADV_NOHUGEPAGE"):
+        pages.madvise(mmap.MADV_NOHUGEPAGE)
     return np.frombuffer(pages, np.uint16).reshape(shape)
 
 
