@@ -46,8 +46,12 @@ class StripTiffWriter:
         self._file = open(self._tmp, "wb")  # noqa: SIM115 - closed in close()/abort()
         self._file.write(b"\0" * _HEADER)
         self._rows = 0
-        # rows wait here until a whole row of tiles can be written
-        self._pending = np.zeros((TILE, self.width, bands), np.uint8)
+        # rows wait here until a whole row of tiles can be written: the width rounded up to
+        # whole tiles, whose columns past the image stay zero
+        self._across = -(-self.width // TILE)
+        self._pending = np.zeros((TILE, self._across * TILE, bands), np.uint8)
+        # a row of tiles in the file's order, made by one copy and written by one call
+        self._tiles = np.empty((self._across, TILE, TILE, bands), np.uint8)
         self._filled = 0
         self._offsets: list[int] = []
         self._counts: list[int] = []
@@ -66,7 +70,7 @@ class StripTiffWriter:
         done = 0
         while done < len(rows3):
             take = min(TILE - self._filled, len(rows3) - done)
-            self._pending[self._filled:self._filled + take] = rows3[done:done + take]
+            self._pending[self._filled:self._filled + take, :self.width] = rows3[done:done + take]
             self._filled += take
             done += take
             if self._filled == TILE:
@@ -77,13 +81,12 @@ class StripTiffWriter:
         """Write the pending row of tiles (zero-padded at the right and bottom edges)."""
         if self._filled < TILE:
             self._pending[self._filled:] = 0
-        for x0 in range(0, self.width, TILE):
-            tile = np.zeros((TILE, TILE, self.bands), np.uint8)
-            part = self._pending[:, x0:x0 + TILE]
-            tile[:, :part.shape[1]] = part
-            self._offsets.append(self._file.tell())
-            self._counts.append(tile.nbytes)
-            self._file.write(tile.data)
+        grid = self._pending.reshape(TILE, self._across, TILE, self.bands)
+        np.copyto(self._tiles, grid.transpose(1, 0, 2, 3))
+        at, size = self._file.tell(), TILE * TILE * self.bands
+        self._offsets.extend(range(at, at + self._across * size, size))
+        self._counts.extend([size] * self._across)
+        self._file.write(self._tiles.data)
         self._filled = 0
 
     def close(self) -> BandImage:
