@@ -12,6 +12,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Callable, Sequence
+from concurrent.futures import Future, ThreadPoolExecutor
 from pathlib import Path
 from typing import Any, BinaryIO
 
@@ -201,15 +202,26 @@ class Sinks:
         bar = progress(f"quantising {key}", self.height) if progress else None
         done = 0
         channels = 1 if key == "ptm-lrgb" else 3
-        for codes, row_lo, row_hi in spill.bands():  # (K, b, W · channels), (K, b) twice
-            b = codes.shape[1]
-            q = quantise_planes(codes, row_lo, row_hi, scale, bias, plan, hsh=key == "hsh",
-                                channels=channels)
+
+        def write(q: npt.NDArray[np.uint8]) -> None:
             for g, rows in zip(parts, q, strict=True):
-                writers[g].write(rows.reshape(b, self.width, 3))
-            done += b
-            if bar:
-                bar.update(done)
+                writers[g].write(rows.reshape(-1, self.width, 3))
+
+        # each band's planes written by a thread of their own while the next band is quantised
+        # (the kernel and the files' writes release the GIL): one band in flight
+        with ThreadPoolExecutor(max_workers=1, thread_name_prefix="lanterna-planes") as pool:
+            written: Future[None] | None = None
+            for codes, row_lo, row_hi in spill.bands():  # (K, b, W · channels), (K, b) twice
+                q = quantise_planes(codes, row_lo, row_hi, scale, bias, plan,
+                                    hsh=key == "hsh", channels=channels)
+                if written is not None:
+                    written.result()
+                written = pool.submit(write, q)
+                done += codes.shape[1]
+                if bar:
+                    bar.update(done)
+            if written is not None:
+                written.result()
         planes = {g: wr.close() for g, wr in writers.items()}
         if key == "hsh":
             return hsh_plane_layer([float(s) for s in scale],
