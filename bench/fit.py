@@ -5,6 +5,7 @@
     .venv/bin/python bench/fit.py compare --python OTHER/.venv/bin/python [--size 1024] [--json OUT]
     .venv/bin/python bench/fit.py compare --stack COLLECTION/dirs.lp [--python OTHER] [--json OUT]
     .venv/bin/python bench/fit.py compare --relit RELIGHT_FOLDER --size 2048 [--python OTHER]
+                                          [--idle SECONDS]
 
 ``throughput`` writes a synthetic multi-light JPEG stack (a bumpy Lambert + Phong object,
 procedural in libvips, so it never exists whole in memory), then times, interleaved in one run
@@ -21,7 +22,10 @@ per-run ratio fit ÷ decode, and the same for CPU time.  ``--stack`` measures a 
 disk (a ``.lp`` file and its images: a real capture) instead of a synthetic stack, ``--relit`` a
 real object relit by its Relight model (:func:`make_relit_stack`); without
 ``--python`` only this checkout is measured.  Either way the stack's size and its JPEGs' bits per
-pixel are reported (a JPEG's decode time grows with its bytes).
+pixel are reported (a JPEG's decode time grows with its bytes).  ``--idle S`` waits ``S``
+seconds before each fit's process: a fit started right after another one's process ended
+reuses memory the host still backs, where a user's fit, started after a pause, may not (a VM
+that reports free memory to its host does so within ~2 s).
 
 ``memory`` runs the whole ``lanterna fit`` (fit + tiling + manifest) of a large stack in a child
 process and reports its peak resident set size (``ru_maxrss`` of the child).
@@ -317,6 +321,7 @@ def compare(args: argparse.Namespace) -> dict[str, Any]:
                     for side, python in order:
                         cmd = [python, str(Path(__file__).resolve()), "one", "--stack", str(lp),
                                "--model", key, "--held", str(h)]
+                        time.sleep(args.idle)  # the machine idle, as between a user's commands
                         proc = subprocess.run(cmd, capture_output=True, text=True, cwd=REPO)
                         if proc.returncode != 0:
                             raise SystemExit(proc.stdout + proc.stderr)
@@ -336,7 +341,7 @@ def compare(args: argparse.Namespace) -> dict[str, Any]:
                 "size": None if args.stack else args.size, "imageSize": size,
                 "lights": args.lights, "bitsPerPixel": round(bits, 3), "rounds": args.rounds,
                 "grain": None if args.stack or args.relit else args.grain,
-                "relit": args.relit, "other": args.python,
+                "relit": args.relit, "other": args.python, "idleSeconds": args.idle,
                 "cases": cases}
     finally:
         shutil.rmtree(work, ignore_errors=True)
@@ -387,11 +392,17 @@ def main() -> None:
     parser.add_argument("--relit", help="compare: a Relight folder whose object, relit, makes "
                                         "the stack (make_relit_stack)")
     parser.add_argument("--rounds", type=int, default=3)
+    parser.add_argument("--idle", type=float, default=0.0,
+                        help="compare: seconds to wait before each fit's process (a VM that "
+                             "reports free memory to its host does so after ~2 s: "
+                             "docs/benchmarks.md \"Fit throughput, sixteenth pass\")")
     parser.add_argument("--tmp", default=None, help="scratch folder (needs disk: see docs)")
     parser.add_argument("--json", type=Path, help="write the result here")
     args = parser.parse_args()
     if args.tmp is not None and not Path(args.tmp).is_dir():
         parser.error(f"--tmp {args.tmp}: not a folder")
+    if not 0 <= args.idle <= 600:
+        parser.error(f"--idle {args.idle}: expected 0 to 600 seconds")
     big = args.what == "memory"
     if args.what == "one":  # runs in the other checkout's interpreter: its own lanterna
         print(json.dumps(one(args)))
