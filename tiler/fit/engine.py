@@ -212,22 +212,23 @@ class _Step:
     def _pieces(self, band: npt.NDArray[np.generic], div: float, keys: Sequence[str],
                 twin: bool) -> Iterator[tuple[int, npt.NDArray[np.generic], float]]:
         """The photometric models' pieces of ``band``: ``(r0, piece, d)`` with ``piece / d`` in
-        0–1, of the rows a float sub-band of the budget holds.  An 8-/16-bit band's pieces stay
-        as decoded (their kernels divide where they read, with the same results; a piece short
-        of the whole band copied into one reused contiguous buffer, a quarter of the float
-        one's bytes at 8 bits) for a fit of the values as stored whose report, if any, is
-        sampled (:meth:`_held_out` refits its sample as decoded); else they are float sub-bands
-        (:class:`~.sub_bands.SubBands`).  The normals alone gained nothing from it once (docs/
-        fitting.md "Speed, ninth pass"); with the rest of their pass faster, the conversion was
-        0.19 s of a 2048² normals fit's main thread, and the rank window reads a quarter of the
-        bytes ("Speed, thirteenth pass")."""
+        0–1, each holding the budget's bytes of input as the kernel reads it.  An 8-/16-bit
+        band's pieces stay as decoded (their kernels divide where they read, with the same
+        results; a piece short of the whole band copied into one reused contiguous buffer) for
+        a fit of the values as stored whose report, if any, is sampled (:meth:`_held_out`
+        refits its sample as decoded); else they are float sub-bands
+        (:class:`~.sub_bands.SubBands`; docs/fitting.md "Speed, thirteenth pass").  A piece
+        as decoded holds 4 (8-bit) or 2 (16-bit) times a float sub-band's rows, the same
+        bytes: at 8 bits a quarter of the calls, each with its Python steps and its threads'
+        wake-ups ("Speed, sixteenth pass")."""
         n, _, w, _ = band.shape
-        rows = sub_band_rows(n, w, WARD_BAND_BUDGET if "ward" in keys else SUB_BAND_BUDGET)
+        budget = WARD_BAND_BUDGET if "ward" in keys else SUB_BAND_BUDGET
         if not (band.dtype in (np.uint8, np.uint16) and div != 1.0 and not self.full.linear
                 and (self.loo is None or twin)):
-            for r0, piece in self._buffers.floats(band, div, rows):
+            for r0, piece in self._buffers.floats(band, div, sub_band_rows(n, w, budget)):
                 yield r0, piece, 1.0
             return
+        rows = sub_band_rows(n, w, budget * 4 // band.itemsize)  # it counts 4-byte samples
         yield from self._buffers.as_decoded(band, div, rows)
 
     def _held_out(self, band: npt.NDArray[np.generic], loo: Solver, keys: Sequence[str],

@@ -6,6 +6,7 @@ that path) reports what the same fit of the loaded float stack reports."""
 from __future__ import annotations
 
 from pathlib import Path
+from typing import Any
 
 import numpy as np
 import numpy.typing as npt
@@ -13,6 +14,7 @@ import pytest
 
 from lanterna.tiler.fit import bands as fb
 from lanterna.tiler.fit.engine import fit_stream
+from lanterna.tiler.fit.sub_bands import SubBands
 from lanterna.tiler.inputs.lp import read_lp
 from lanterna.tiler.inputs.stack import StackReader, load_stack, to_unit
 from tests.python.fixtures.glossy import glossy_scene
@@ -71,21 +73,33 @@ def test_a_streamed_fit_reports_what_the_float_stack_reports(
         tmp_path: Path, monkeypatch: pytest.MonkeyPatch, depth: int, sub_rows: int,
         keys: list[str], report_pixels: int | None) -> None:
     # the twin on a sample of the pixels (as decoded), or on every pixel (float sub-bands);
-    # pieces of 2 rows (a small float budget) are copied out of the decoded band, 7 rows high
+    # pieces of 2 rows as decoded (a budget of their bytes; float pieces of 1 row) are copied
+    # out of the decoded band, 7 rows high
     img, lights, _ = glossy_scene(seed=4)
     if sub_rows:
         n, _, w, _ = img.shape
         for name in ("SUB_BAND_BUDGET", "WARD_BAND_BUDGET"):
-            monkeypatch.setattr(f"lanterna.tiler.fit.engine.{name}", n * w * 12 * sub_rows)
+            monkeypatch.setattr(f"lanterna.tiler.fit.engine.{name}",
+                                n * w * 3 * (depth // 8) * sub_rows)
     lp = write_collection(tmp_path / "shots", np.clip(img, 0, 1), lights, depth=depth)
     files, lts = read_lp(lp, lp.parent)
     reader = StackReader(files)
     assert reader.native_dtype() == (np.uint8 if depth == 8 else np.uint16)
     for name in ("streamed", "loaded"):
         (tmp_path / name).mkdir()
+    heights: list[int] = []  # the pieces as decoded
+    as_decoded = SubBands.as_decoded
+
+    def spy(self: SubBands, band: npt.NDArray[np.generic], div: float, rows: int) -> Any:
+        for r0, piece, d in as_decoded(self, band, div, rows):
+            heights.append(piece.shape[1])
+            yield r0, piece, d
+    monkeypatch.setattr(SubBands, "as_decoded", spy)
     runs = [fit_stream(stack, lts, keys, tmp_path / name, holdout_every=5,
                        report_pixels=report_pixels, band_rows=7)
             for stack, name in ((reader, "streamed"), (load_stack(files), "loaded"))]
+    if sub_rows and report_pixels is not None:  # the streamed fit's pieces, as decoded
+        assert heights and max(heights) == sub_rows
     assert runs[0].quality == runs[1].quality
     for key in keys:
         assert runs[0].quality[key]["meanPsnr"] > 20
