@@ -135,9 +135,13 @@ def test_mapped_codes_ask_for_small_pages() -> None:
 _SPECIAL = [0.0, -0.0, np.inf, -np.inf, 1e-45, -1e-45, 3.4e38, -3.4e38, 1.0, -1.0]
 
 
+#: :func:`value_range` called from compiled code, as the kernels call it (compiled once)
+_compiled_range = numba.njit(lambda r: value_range(r))
+
+
 def _row_range(row: npt.NDArray[np.float32]) -> tuple[float, float]:
-    """:func:`value_range` called from compiled code, as the kernels call it."""
-    return tuple(float(v) for v in numba.njit(lambda r: value_range(r))(row))  # type: ignore[return-value]
+    lo, hi = _compiled_range(row)
+    return float(lo), float(hi)
 
 
 @settings(max_examples=80, deadline=None)
